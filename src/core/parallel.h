@@ -1,0 +1,60 @@
+// The one thin parallel layer. Stages call these, never raw TBB. Each index writes its own slot,
+// so results do not depend on the thread count; small inputs run serially (no task overhead).
+#pragma once
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cstddef>
+#include <exception>
+#include <mutex>
+
+namespace hm {
+
+// Below this many items a loop runs on the calling thread.
+inline constexpr std::size_t kSerialCutoff = 256;
+
+// Calls f(i) for every i in [begin, end). f must write only state owned by index i. An exception
+// thrown by f is carried out of the task and rethrown on the calling thread (first one wins).
+template <class F>
+void parallel_for(std::size_t begin, std::size_t end, F&& f, std::size_t grain = 64) {
+  if (end <= begin) return;
+  if (end - begin < kSerialCutoff) {
+    for (std::size_t i = begin; i < end; ++i) f(i);
+    return;
+  }
+  std::exception_ptr error;
+  std::once_flag once;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, grain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      try {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                      } catch (...) {
+                        std::call_once(once, [&] { error = std::current_exception(); });
+                      }
+                    });
+  if (error) std::rethrow_exception(error);
+}
+
+// Same, with a per-index cost so that a few heavy items (large patches) spread over threads.
+template <class F>
+void parallel_for_each_item(std::size_t count, F&& f) {
+  if (count == 0) return;
+  if (count == 1) {
+    f(std::size_t{0});
+    return;
+  }
+  std::exception_ptr error;
+  std::once_flag once;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      try {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                      } catch (...) {
+                        std::call_once(once, [&] { error = std::current_exception(); });
+                      }
+                    });
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace hm

@@ -1,0 +1,51 @@
+// A hull patch: one NURBS surface, the loops that trim it, and where it came from.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "nurbs/nurbs_curve.h"
+#include "nurbs/nurbs_surface.h"
+
+namespace hm {
+
+// How the surface was wrapped in the file (reported by `hullmesh info`).
+enum class Wrapping {
+  kPlain,      // a bare surface entity (128, 118, 120, 122, 114, 108, 190)
+  kBounded,    // 143 bounded surface
+  kTrimmed,    // 144 trimmed surface
+  kFace,       // 510 face of a B-rep (508 loops)
+  kGenerated,  // made by `hullmesh generate`
+};
+const char* to_string(Wrapping w);
+
+// A closed loop in the (u, v) domain of the patch, made of curves with z = 0 chained head to tail.
+struct TrimLoop {
+  std::vector<NurbsCurve> curves_uv;
+  bool outer = true;
+};
+
+struct Patch {
+  NurbsSurface surface;
+  // Empty: the whole parameter domain. Otherwise the outer loop comes first (outer = true) and the
+  // holes follow. A loop that is the natural boundary of the domain is dropped on import.
+  std::vector<TrimLoop> loops;
+  // True when the face uses the surface reversed (normal -su x sv), from a 510/514 orientation
+  // flag or an injected flip.
+  bool reversed = false;
+  Wrapping wrapping = Wrapping::kPlain;
+  int source_type = 128;  // IGES type of the surface entity
+  int de = 0;             // DE number of the surface entity; 0 when generated
+  int wrapper_de = 0;     // DE number of the 143/144/510 that wrapped it; 0 when none
+  std::string name;       // from 406 form 15 or the DE label; may be empty
+};
+
+// A 2D polygon of each loop of the patch, within tol in parameter units. Empty when untrimmed.
+std::vector<std::vector<Vec2d>> sample_loops_uv(const Patch& p, double tol_uv);
+
+// Area of the patch's surface (m^2), inside its loops, by Gauss-Legendre quadrature over the knot
+// spans (adaptively split where a trim loop crosses a cell).
+double patch_area(const Patch& p);
+
+}  // namespace hm

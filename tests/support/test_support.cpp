@@ -1,0 +1,55 @@
+#include "support/test_support.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+
+namespace hm::test {
+namespace fs = std::filesystem;
+
+fs::path shared_hulls_dir() {
+  const char* env = std::getenv("HM_SHARED_DIR");
+  fs::path dir = env ? fs::path(env) / "data" / "hulls" : fs::path("../shared/data/hulls");
+  std::error_code ec;
+  return fs::is_directory(dir, ec) ? dir : fs::path();
+}
+
+fs::path shared_hull(const std::string& name) {
+  const fs::path dir = shared_hulls_dir();
+  if (dir.empty()) return {};
+  const fs::path p = dir / name;
+  std::error_code ec;
+  return fs::is_regular_file(p, ec) ? p : fs::path();
+}
+
+fs::path scratch_dir(const std::string& test_name) {
+  const char* build = std::getenv("HM_BUILD_DIR");
+  fs::path root = build ? fs::path(build) / "test-scratch" : fs::temp_directory_path() / "hm-test";
+  fs::path dir = root / test_name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path hullmesh_exe() {
+  const char* build = std::getenv("HM_BUILD_DIR");
+  return (build ? fs::path(build) : fs::path("build")) / "src" / "cli" / "hullmesh";
+}
+
+RunResult run_hullmesh(const std::string& args) {
+  RunResult r;
+  const std::string cmd = hullmesh_exe().string() + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace hm::test
