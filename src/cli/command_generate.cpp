@@ -64,7 +64,8 @@ void register_generate(CLI::App& app, const GlobalOptions& global, Action& actio
   cmd->add_flag("--full", o->spec.full_hull, "Both sides (default: the port half, y >= 0)");
   cmd->add_option("--length", o->spec.length, "Length L (m)")->check(CLI::PositiveNumber);
   cmd->add_option("--beam", o->spec.beam, "Beam B (m)")->check(CLI::PositiveNumber);
-  cmd->add_option("--depth", o->spec.depth, "Depth D, keel to deck (m)")->check(CLI::PositiveNumber);
+  cmd->add_option("--depth", o->spec.depth, "Depth D, keel to deck (m)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--draft", o->spec.draft, "Design draft T (m)")->check(CLI::PositiveNumber);
   cmd->add_option("--gap", o->spec.defects.gap, "Defect: gap between patches (m)")
       ->check(CLI::NonNegativeNumber);
@@ -79,9 +80,8 @@ void register_generate(CLI::App& app, const GlobalOptions& global, Action& actio
   cmd->add_option("--lie-units", o->lie_units,
                   "Defect: declare this unit (mm, cm, in, ft, km) while writing metres");
   cmd->add_option("--seed", o->spec.defects.seed, "Seed for random defects");
-  cmd->callback([o, &global, &action] {
-    action = [o, &global] { return run_generate(*o, global); };
-  });
+  cmd->callback(
+      [o, &global, &action] { action = [o, &global] { return run_generate(*o, global); }; });
 }
 
 }  // namespace hm::cli

@@ -1,11 +1,10 @@
 // hullmesh info FILE: what an engineer wants to see first about an IGES hull file.
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -126,9 +125,9 @@ void print_table(const ImportResult& r, const std::vector<double>& areas, const 
                 r.units.applied_to_metres, r.units.forced ? " (forced by --units)" : "");
   row("units", buf);
   if (r.units.implausible)
-    row("", "WARNING: extents implausible for a ship in the declared unit" +
-                (r.units.suggestion.empty() ? std::string()
-                                            : "; try --units " + r.units.suggestion));
+    row("",
+        "WARNING: extents implausible for a ship in the declared unit" +
+            (r.units.suggestion.empty() ? std::string() : "; try --units " + r.units.suggestion));
 
   std::map<std::string, int> by_wrapping;
   std::map<int, int> by_type;
@@ -137,7 +136,8 @@ void print_table(const ImportResult& r, const std::vector<double>& areas, const 
     by_type[p.source_type] += 1;
   }
   std::string wraps;
-  for (const auto& [w, n] : by_wrapping) wraps += (wraps.empty() ? "" : ", ") + std::to_string(n) + " " + w;
+  for (const auto& [w, n] : by_wrapping)
+    wraps += (wraps.empty() ? "" : ", ") + std::to_string(n) + " " + w;
   std::snprintf(buf, sizeof buf, "%zu (%s)", r.patches.size(), wraps.c_str());
   row("patches", buf);
   std::string types;
@@ -146,8 +146,8 @@ void print_table(const ImportResult& r, const std::vector<double>& areas, const 
              iges_entity_name(t);
   row("surface types", types);
   if (!r.bbox.empty()) {
-    std::snprintf(buf, sizeof buf, "x [%.6g, %.6g]  y [%.6g, %.6g]  z [%.6g, %.6g] m",
-                  r.bbox.lo.x, r.bbox.hi.x, r.bbox.lo.y, r.bbox.hi.y, r.bbox.lo.z, r.bbox.hi.z);
+    std::snprintf(buf, sizeof buf, "x [%.6g, %.6g]  y [%.6g, %.6g]  z [%.6g, %.6g] m", r.bbox.lo.x,
+                  r.bbox.hi.x, r.bbox.lo.y, r.bbox.hi.y, r.bbox.lo.z, r.bbox.hi.z);
     row("bounding box", buf);
     const Vec3d e = r.bbox.extent();
     std::snprintf(buf, sizeof buf, "%.6g x %.6g x %.6g m (%s)", e.x, e.y, e.z,
@@ -184,8 +184,8 @@ void print_table(const ImportResult& r, const std::vector<double>& areas, const 
     row("skipped", std::to_string(total_skipped) + " without a hull surface: " + s);
   }
   const Diagnostics& d = r.diagnostics;
-  std::snprintf(buf, sizeof buf, "%zu errors, %zu warnings, %zu notes",
-                d.count(Severity::kError), d.count(Severity::kWarning), d.count(Severity::kNote));
+  std::snprintf(buf, sizeof buf, "%zu errors, %zu warnings, %zu notes", d.count(Severity::kError),
+                d.count(Severity::kWarning), d.count(Severity::kNote));
   row("diagnostics", buf);
   for (const Diagnostic& di : d.items())
     if (di.severity != Severity::kNote || g.verbose) std::printf("    %s\n", format(di).c_str());
@@ -208,7 +208,8 @@ int run_info(const InfoOptions& o, const GlobalOptions& g) {
   import.force_units = o.units;
   const ImportResult r = read_iges_file(o.file, import);
   std::vector<double> areas(r.patches.size(), 0.0);
-  parallel_for_each_item(r.patches.size(), [&](std::size_t i) { areas[i] = patch_area(r.patches[i]); });
+  parallel_for_each_item(r.patches.size(),
+                         [&](std::size_t i) { areas[i] = patch_area(r.patches[i]); });
   if (o.json) {
     std::printf("%s\n", to_json(r, areas, o.file).dump(2).c_str());
   } else if (!g.quiet) {
@@ -229,7 +230,8 @@ void register_info(CLI::App& app, const GlobalOptions& global, Action& action) {
   cmd->add_option("--units", opts->units,
                   "Force the file's unit (m, mm, cm, in, ft, km), overriding G14/G15")
       ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
-  cmd->callback([opts, &global, &action] { action = [opts, &global] { return run_info(*opts, global); }; });
+  cmd->callback(
+      [opts, &global, &action] { action = [opts, &global] { return run_info(*opts, global); }; });
 }
 
 }  // namespace hm::cli

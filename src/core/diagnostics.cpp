@@ -22,8 +22,8 @@ std::string format(const Diagnostic& d) {
   if (d.de > 0) {
     out += "DE " + std::to_string(d.de);
     if (d.entity_type > 0) out += " (type " + std::to_string(d.entity_type);
-    if (d.line > 0) out += (d.entity_type > 0 ? ", " : " (") + std::string("P line ") +
-                           std::to_string(d.line);
+    if (d.line > 0)
+      out += (d.entity_type > 0 ? ", " : " (") + std::string("P line ") + std::to_string(d.line);
     if (d.entity_type > 0 || d.line > 0) out += ")";
     out += ": ";
   }
@@ -36,8 +36,8 @@ void Diagnostics::add(Severity s, int de, int line, int entity_type, std::string
 }
 
 std::size_t Diagnostics::count(Severity s) const {
-  return static_cast<std::size_t>(
-      std::count_if(items_.begin(), items_.end(), [s](const Diagnostic& d) { return d.severity == s; }));
+  return static_cast<std::size_t>(std::count_if(
+      items_.begin(), items_.end(), [s](const Diagnostic& d) { return d.severity == s; }));
 }
 
 void Diagnostics::append(const Diagnostics& other) {

@@ -9,9 +9,21 @@ namespace hm {
 struct Vec2d {
   double x = 0, y = 0;
 
-  constexpr Vec2d& operator+=(const Vec2d& o) { x += o.x; y += o.y; return *this; }
-  constexpr Vec2d& operator-=(const Vec2d& o) { x -= o.x; y -= o.y; return *this; }
-  constexpr Vec2d& operator*=(double s) { x *= s; y *= s; return *this; }
+  constexpr Vec2d& operator+=(const Vec2d& o) {
+    x += o.x;
+    y += o.y;
+    return *this;
+  }
+  constexpr Vec2d& operator-=(const Vec2d& o) {
+    x -= o.x;
+    y -= o.y;
+    return *this;
+  }
+  constexpr Vec2d& operator*=(double s) {
+    x *= s;
+    y *= s;
+    return *this;
+  }
   friend constexpr Vec2d operator+(Vec2d a, const Vec2d& b) { return a += b; }
   friend constexpr Vec2d operator-(Vec2d a, const Vec2d& b) { return a -= b; }
   friend constexpr Vec2d operator*(Vec2d a, double s) { return a *= s; }
@@ -24,10 +36,30 @@ struct Vec3d {
 
   constexpr double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr Vec3d& operator+=(const Vec3d& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  constexpr Vec3d& operator-=(const Vec3d& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  constexpr Vec3d& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
-  constexpr Vec3d& operator/=(double s) { x /= s; y /= s; z /= s; return *this; }
+  constexpr Vec3d& operator+=(const Vec3d& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  constexpr Vec3d& operator-=(const Vec3d& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  constexpr Vec3d& operator*=(double s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
+  constexpr Vec3d& operator/=(double s) {
+    x /= s;
+    y /= s;
+    z /= s;
+    return *this;
+  }
   friend constexpr Vec3d operator+(Vec3d a, const Vec3d& b) { return a += b; }
   friend constexpr Vec3d operator-(Vec3d a, const Vec3d& b) { return a -= b; }
   friend constexpr Vec3d operator-(const Vec3d& a) { return {-a.x, -a.y, -a.z}; }

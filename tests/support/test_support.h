@@ -25,6 +25,6 @@ RunResult run_hullmesh(const std::string& args);
 }  // namespace hm::test
 
 // Skips the current test when a shared hull is not present (CI without ../shared).
-#define HM_REQUIRE_SHARED_HULL(var, name)                                 \
-  const std::filesystem::path var = ::hm::test::shared_hull(name);        \
+#define HM_REQUIRE_SHARED_HULL(var, name)                          \
+  const std::filesystem::path var = ::hm::test::shared_hull(name); \
   if (var.empty()) GTEST_SKIP() << "shared hull " << name << " not present"
