@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/write_polylines.h"
 #include "support/test_support.h"
 
 namespace hm {
@@ -98,6 +99,28 @@ TEST(AtomicFile, FailedWriteKeepsOldFileAndLeavesNoTemporary) {
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
   EXPECT_EQ(files, 1);
+}
+
+}  // namespace
+}  // namespace hm
+
+namespace hm {
+namespace {
+
+TEST(WritePolylines, CsvAndVtkCarryEveryPoint) {
+  const auto dir = test::scratch_dir("polylines");
+  PolylineRecord a{"x=1", {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}}, {0, 0, 1}, {}, false};
+  PolylineRecord b{"z=2", {{0, 0, 2}, {1, 0, 2}, {1, 1, 2}}, {}, {}, true};
+  const std::vector<PolylineRecord> lines = {a, b};
+  write_polylines((dir / "s.csv").string(), lines);
+  write_polylines((dir / "s.vtk").string(), lines);
+  const std::string c = slurp(dir / "s.csv");
+  EXPECT_NE(c.find("0,x=1,0,2,1,1,1,1,,\n"), std::string::npos) << c;
+  EXPECT_NE(c.find("1,z=2,1,0,0,0,2,,,\n"), std::string::npos) << c;
+  const std::string v = slurp(dir / "s.vtk");
+  EXPECT_NE(v.find("POINTS 6 double"), std::string::npos);
+  EXPECT_NE(v.find("LINES 2 9\n3 0 1 2\n4 3 4 5 3\n"), std::string::npos) << v;
+  EXPECT_THROW(write_polylines((dir / "s.txt").string(), lines), UsageError);
 }
 
 }  // namespace
