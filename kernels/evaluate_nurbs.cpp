@@ -1,1 +1,246 @@
-// Placeholder: being written.
+#include "kernels/evaluate_nurbs.h"
+
+#include <algorithm>
+
+namespace hm::kernel {
+namespace {
+
+// Sums the homogeneous derivatives A(k, l) = sum_ij N_i^(k)(u) N_j^(l)(v) (w P, w)_ij for
+// k + l <= Order, then applies the quotient rule. nu and nv point at a ders_basis_funs block of at
+// least Order + 1 rows. The summation order is fixed (rows of the net j outside, u inside) and is
+// the same for every Order, so positions do not depend on how many derivatives were asked for.
+template <int Order>
+void combine_order(const SurfaceArrays& s, int span_u, const double* nu, int span_v,
+                   const double* nv, Vec3d* out) {
+  const int pu = s.degree_u;
+  const int pv = s.degree_v;
+  const int wu = pu + 1;
+  const int wv = pv + 1;
+  double a[Order + 1][Order + 1][4] = {};
+  const std::size_t count_u = static_cast<std::size_t>(s.count_u);
+  const Vec3d* net = s.points.data() + (span_u - pu);
+  const double* net_w = s.weights.data() + (span_u - pu);
+  for (int j = 0; j <= pv; ++j) {
+    const std::size_t row = count_u * static_cast<std::size_t>(span_v - pv + j);
+    const Vec3d* pts = net + row;
+    const double* wts = net_w + row;
+    double t[Order + 1][4] = {};
+    for (int i = 0; i <= pu; ++i) {
+      const double w = wts[i];
+      const double pw[4] = {pts[i].x * w, pts[i].y * w, pts[i].z * w, w};
+      for (int k = 0; k <= Order; ++k) {
+        const double b = nu[k * wu + i];
+        for (int c = 0; c < 4; ++c) t[k][c] += b * pw[c];
+      }
+    }
+    for (int l = 0; l <= Order; ++l) {
+      const double b = nv[l * wv + j];
+      for (int k = 0; k + l <= Order; ++k) {
+        for (int c = 0; c < 4; ++c) a[k][l][c] += b * t[k][c];
+      }
+    }
+  }
+  // Multiplying by 1 / w instead of dividing: fewer divisions on the hot path.
+  const double inv_w = 1.0 / a[0][0][3];
+  auto xyz = [&](int k, int l) { return Vec3d{a[k][l][0], a[k][l][1], a[k][l][2]}; };
+  const Vec3d p = xyz(0, 0) * inv_w;
+  out[0] = p;
+  if constexpr (Order >= 1) {
+    const double wu1 = a[1][0][3];
+    const double wv1 = a[0][1][3];
+    const Vec3d su = (xyz(1, 0) - wu1 * p) * inv_w;
+    const Vec3d sv = (xyz(0, 1) - wv1 * p) * inv_w;
+    out[1] = su;
+    out[2] = sv;
+    if constexpr (Order >= 2) {
+      out[3] = (xyz(2, 0) - 2.0 * wu1 * su - a[2][0][3] * p) * inv_w;
+      out[4] = (xyz(1, 1) - wu1 * sv - wv1 * su - a[1][1][3] * p) * inv_w;
+      out[5] = (xyz(0, 2) - 2.0 * wv1 * sv - a[0][2][3] * p) * inv_w;
+    }
+  }
+}
+
+void combine(const SurfaceArrays& s, int span_u, const double* nu, int span_v, const double* nv,
+             int order, Vec3d* out) {
+  switch (order) {
+    case 0:
+      combine_order<0>(s, span_u, nu, span_v, nv, out);
+      break;
+    case 1:
+      combine_order<1>(s, span_u, nu, span_v, nv, out);
+      break;
+    default:
+      combine_order<2>(s, span_u, nu, span_v, nv, out);
+      break;
+  }
+}
+
+// Span and basis block of one direction at one parameter (clamped into the knot range).
+int direction_basis(int degree, int count, const double* knots, double t, int order, double* ders) {
+  t = clamp_param(degree, count, knots, t);
+  const int span = find_span(degree, count, knots, t);
+  ders_basis_funs(span, t, degree, order, knots, ders);
+  return span;
+}
+
+// The unit normal from Su and Sv, or false when normal_degenerate (one cross product, shared).
+bool unit_normal(const Vec3d& su, const Vec3d& sv, double du, double dv, Vec3d& n) {
+  const Vec3d c = cross(su, sv);
+  const double len = norm(c);
+  const double edges = norm(su) * du + norm(sv) * dv;
+  if (!(len * du * dv > kDegenerateRatio * edges * edges)) return false;
+  n = c * (1.0 / len);
+  return true;
+}
+
+}  // namespace
+
+void surface_derivs(const SurfaceArrays& s, double u, double v, int order, Vec3d* out) {
+  order = std::clamp(order, 0, kMaxOrder);
+  double nu[(kMaxOrder + 1) * (kMaxDegree + 1)];
+  double nv[(kMaxOrder + 1) * (kMaxDegree + 1)];
+  const int span_u = direction_basis(s.degree_u, s.count_u, s.knots_u.data(), u, order, nu);
+  const int span_v = direction_basis(s.degree_v, s.count_v, s.knots_v.data(), v, order, nv);
+  combine(s, span_u, nu, span_v, nv, order, out);
+}
+
+Vec3d surface_point(const SurfaceArrays& s, double u, double v) {
+  Vec3d p;
+  surface_derivs(s, u, v, 0, &p);
+  return p;
+}
+
+bool normal_degenerate(const Vec3d& su, const Vec3d& sv, double du, double dv, double ratio) {
+  const double len = norm(cross(su, sv));
+  const double edges = norm(su) * du + norm(sv) * dv;
+  return !(len * du * dv > ratio * edges * edges);
+}
+
+bool regular_param(const SurfaceArrays& s, double& u, double& v, double ratio) {
+  static constexpr double kSteps[] = {0.0, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 0.5, 1.0};
+  const double du = s.u1 - s.u0;
+  const double dv = s.v1 - s.v0;
+  const double cu = 0.5 * (s.u0 + s.u1);
+  const double cv = 0.5 * (s.v0 + s.v1);
+  const double u_in = std::clamp(u, std::min(s.u0, s.u1), std::max(s.u0, s.u1));
+  const double v_in = std::clamp(v, std::min(s.v0, s.v1), std::max(s.v0, s.v1));
+  for (const double f : kSteps) {
+    const double ut = u_in + f * (cu - u_in);
+    const double vt = v_in + f * (cv - v_in);
+    Vec3d d[3];
+    surface_derivs(s, ut, vt, 1, d);
+    if (!normal_degenerate(d[1], d[2], du, dv, ratio)) {
+      u = ut;
+      v = vt;
+      return true;
+    }
+  }
+  u = u_in;
+  v = v_in;
+  return false;
+}
+
+Vec3d surface_normal(const SurfaceArrays& s, double u, double v) {
+  const double du = s.u1 - s.u0;
+  const double dv = s.v1 - s.v0;
+  Vec3d d[3];
+  Vec3d n;
+  surface_derivs(s, u, v, 1, d);
+  if (unit_normal(d[1], d[2], du, dv, n)) return n;
+  if (!regular_param(s, u, v)) return Vec3d{};
+  surface_derivs(s, u, v, 1, d);
+  return unit_normal(d[1], d[2], du, dv, n) ? n : Vec3d{};
+}
+
+void basis_table(int degree, int count, std::span<const double> knots,
+                 std::span<const double> params, int order, BasisTable& out) {
+  order = std::clamp(order, 0, kMaxOrder);
+  const std::size_t block = static_cast<std::size_t>(order + 1) * (degree + 1);
+  out.degree = degree;
+  out.order = order;
+  out.spans.resize(params.size());
+  out.values.resize(block * params.size());
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    out.spans[i] =
+        direction_basis(degree, count, knots.data(), params[i], order, &out.values[block * i]);
+  }
+}
+
+void surface_grid_rows(const SurfaceArrays& s, std::span<const double> us,
+                       std::span<const double> vs, const BasisTable& bu, const BasisTable& bv,
+                       std::size_t row_begin, std::size_t row_end, std::span<Vec3d> positions,
+                       std::span<Vec3d> normals) {
+  const bool with_normals = !normals.empty();
+  const int order = with_normals ? 1 : 0;
+  const std::size_t block_u = static_cast<std::size_t>(bu.order + 1) * (bu.degree + 1);
+  const std::size_t block_v = static_cast<std::size_t>(bv.order + 1) * (bv.degree + 1);
+  const double du = s.u1 - s.u0;
+  const double dv = s.v1 - s.v0;
+  const std::size_t nu = us.size();
+  for (std::size_t j = row_begin; j < row_end; ++j) {
+    const double* bvj = &bv.values[block_v * j];
+    for (std::size_t i = 0; i < nu; ++i) {
+      Vec3d d[3];
+      combine(s, bu.spans[i], &bu.values[block_u * i], bv.spans[j], bvj, order, d);
+      const std::size_t k = i + nu * j;
+      positions[k] = d[0];
+      if (with_normals && !unit_normal(d[1], d[2], du, dv, normals[k])) {
+        normals[k] = surface_normal(s, us[i], vs[j]);
+      }
+    }
+  }
+}
+
+void surface_grid_derivs(const SurfaceArrays& s, const BasisTable& bu, const BasisTable& bv,
+                         int order, std::span<Vec3d> out) {
+  order = std::clamp(order, 0, std::min(bu.order, bv.order));
+  const std::size_t m = order == 0 ? 1 : (order == 1 ? 3 : 6);
+  const std::size_t block_u = static_cast<std::size_t>(bu.order + 1) * (bu.degree + 1);
+  const std::size_t block_v = static_cast<std::size_t>(bv.order + 1) * (bv.degree + 1);
+  const std::size_t nu = bu.spans.size();
+  for (std::size_t j = 0; j < bv.spans.size(); ++j) {
+    for (std::size_t i = 0; i < nu; ++i) {
+      combine(s, bu.spans[i], &bu.values[block_u * i], bv.spans[j], &bv.values[block_v * j], order,
+              &out[(i + nu * j) * m]);
+    }
+  }
+}
+
+void surface_points(const SurfaceArrays& s, std::span<const Vec2d> uv, std::size_t begin,
+                    std::size_t end, std::span<Vec3d> positions, std::span<Vec3d> normals) {
+  const bool with_normals = !normals.empty();
+  const double du = s.u1 - s.u0;
+  const double dv = s.v1 - s.v0;
+  for (std::size_t k = begin; k < end; ++k) {
+    Vec3d d[3];
+    surface_derivs(s, uv[k].x, uv[k].y, with_normals ? 1 : 0, d);
+    positions[k] = d[0];
+    if (with_normals && !unit_normal(d[1], d[2], du, dv, normals[k])) {
+      normals[k] = surface_normal(s, uv[k].x, uv[k].y);
+    }
+  }
+}
+
+void curve_derivs(int degree, std::span<const double> knots, std::span<const Vec3d> points,
+                  std::span<const double> weights, double t, int order, Vec3d* out) {
+  order = std::clamp(order, 0, 1);
+  const int count = static_cast<int>(points.size());
+  double n[2 * (kMaxDegree + 1)];
+  const int span = direction_basis(degree, count, knots.data(), t, order, n);
+  const int w = degree + 1;
+  double a[2][4] = {};
+  for (int i = 0; i <= degree; ++i) {
+    const int idx = span - degree + i;
+    const double wt = weights[idx];
+    const double pw[4] = {points[idx].x * wt, points[idx].y * wt, points[idx].z * wt, wt};
+    for (int k = 0; k <= order; ++k) {
+      for (int c = 0; c < 4; ++c) a[k][c] += n[k * w + i] * pw[c];
+    }
+  }
+  const Vec3d c = Vec3d{a[0][0], a[0][1], a[0][2]} / a[0][3];
+  out[0] = c;
+  if (order < 1) return;
+  out[1] = (Vec3d{a[1][0], a[1][1], a[1][2]} - a[1][3] * c) / a[0][3];
+}
+
+}  // namespace hm::kernel
