@@ -1,0 +1,139 @@
+#include "mesh/adjacency.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/error.h"
+
+namespace hm {
+namespace {
+
+// One corner's edge: (min vertex, max vertex) packed for sorting, then the slot 4 f + c.
+struct EdgeKey {
+  std::uint64_t key;
+  Index slot;
+  bool operator<(const EdgeKey& o) const { return key != o.key ? key < o.key : slot < o.slot; }
+};
+
+std::uint64_t pack(Index a, Index b) { return (std::uint64_t{a} << 32) | b; }
+
+// The directed edge (tail, head) of a slot as its face traverses it.
+std::array<Index, 2> directed(std::span<const Face> faces, Index slot) {
+  const Face& f = faces[slot / 4];
+  const int c = static_cast<int>(slot % 4);
+  return {f[c], f[(c + 1) % corner_count(f)]};
+}
+
+std::vector<EdgeKey> collect_keys(std::span<const Face> faces, std::size_t vertex_count) {
+  std::vector<EdgeKey> keys;
+  keys.reserve(faces.size() * 4);
+  for (std::size_t fi = 0; fi < faces.size(); ++fi) {
+    const Face& f = faces[fi];
+    const int n = corner_count(f);
+    for (int c = 0; c < n; ++c) {
+      const Index a = f[c];
+      const Index b = f[(c + 1) % n];
+      if (a >= vertex_count || b >= vertex_count) {
+        throw GeometryError("face " + std::to_string(fi) + " names vertex " +
+                            std::to_string(std::max(a, b)) + " of a mesh with " +
+                            std::to_string(vertex_count) + " vertices");
+      }
+      if (a == b) continue;  // a collapsed corner has no edge
+      keys.push_back({pack(std::min(a, b), std::max(a, b)), static_cast<Index>(4 * fi + c)});
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+// Chains the directed boundary edges into loops: open chains first (from vertices with no incoming
+// boundary edge), then closed loops, each started at its lowest unused edge id. At a vertex with
+// several outgoing boundary edges the lowest unused id is taken, so the result is deterministic.
+std::vector<BoundaryLoop> chain_boundary(std::span<const Face> faces, const EdgeAdjacency& adj) {
+  const std::vector<Index>& be = adj.boundary_edges;
+  std::vector<std::array<Index, 2>> dir(be.size());
+  std::vector<std::pair<Index, Index>> outgoing(be.size());  // (tail vertex, local index)
+  std::vector<std::pair<Index, Index>> incoming(be.size());  // (head vertex, local index)
+  for (std::size_t i = 0; i < be.size(); ++i) {
+    dir[i] = directed(faces, adj.edges[be[i]].first_slot);
+    outgoing[i] = {dir[i][0], static_cast<Index>(i)};
+    incoming[i] = {dir[i][1], static_cast<Index>(i)};
+  }
+  std::sort(outgoing.begin(), outgoing.end());
+  std::sort(incoming.begin(), incoming.end());
+  auto has_incoming = [&](Index v) {
+    auto it = std::lower_bound(incoming.begin(), incoming.end(), std::pair<Index, Index>{v, 0});
+    return it != incoming.end() && it->first == v;
+  };
+  std::vector<bool> used(be.size(), false);
+  auto next_from = [&](Index v) -> Index {
+    auto it = std::lower_bound(outgoing.begin(), outgoing.end(), std::pair<Index, Index>{v, 0});
+    for (; it != outgoing.end() && it->first == v; ++it)
+      if (!used[it->second]) return it->second;
+    return kInvalid;
+  };
+  std::vector<BoundaryLoop> loops;
+  auto walk = [&](Index start) {
+    BoundaryLoop loop;
+    const Index first_vertex = dir[start][0];
+    Index cur = start;
+    while (cur != kInvalid) {
+      used[cur] = true;
+      loop.vertices.push_back(dir[cur][0]);
+      loop.edges.push_back(be[cur]);
+      const Index head = dir[cur][1];
+      if (head == first_vertex) {
+        loop.closed = true;
+        break;
+      }
+      cur = next_from(head);
+      if (cur == kInvalid) loop.vertices.push_back(head);
+    }
+    loops.push_back(std::move(loop));
+  };
+  for (std::size_t i = 0; i < be.size(); ++i)
+    if (!used[i] && !has_incoming(dir[i][0])) walk(static_cast<Index>(i));
+  for (std::size_t i = 0; i < be.size(); ++i)
+    if (!used[i]) walk(static_cast<Index>(i));
+  return loops;
+}
+
+}  // namespace
+
+EdgeAdjacency build_edge_adjacency(std::span<const Face> faces, std::size_t vertex_count) {
+  const std::vector<EdgeKey> keys = collect_keys(faces, vertex_count);
+  EdgeAdjacency adj;
+  adj.slot_edge.assign(faces.size() * 4, kInvalid);
+  adj.opposite_face.assign(faces.size() * 4, kInvalid);
+  adj.opposite_corner.assign(faces.size() * 4, 0xff);
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].key == keys[i].key) ++j;
+    MeshEdge e;
+    e.v0 = static_cast<Index>(keys[i].key >> 32);
+    e.v1 = static_cast<Index>(keys[i].key & 0xffffffffu);
+    e.first_slot = keys[i].slot;
+    e.uses = static_cast<Index>(j - i);
+    const Index id = static_cast<Index>(adj.edges.size());
+    for (std::size_t k = i; k < j; ++k) adj.slot_edge[keys[k].slot] = id;
+    if (e.uses == 1) {
+      adj.boundary_edges.push_back(id);
+    } else if (e.uses == 2) {
+      const Index s0 = keys[i].slot, s1 = keys[i + 1].slot;
+      e.same_direction = directed(faces, s0)[0] == directed(faces, s1)[0];
+      if (e.same_direction) adj.inconsistent_edges.push_back(id);
+      adj.opposite_face[s0] = s1 / 4;
+      adj.opposite_corner[s0] = static_cast<std::uint8_t>(s1 % 4);
+      adj.opposite_face[s1] = s0 / 4;
+      adj.opposite_corner[s1] = static_cast<std::uint8_t>(s0 % 4);
+    } else {
+      adj.nonmanifold_edges.push_back(id);
+    }
+    adj.edges.push_back(e);
+    i = j;
+  }
+  adj.boundary_loops = chain_boundary(faces, adj);
+  return adj;
+}
+
+}  // namespace hm
