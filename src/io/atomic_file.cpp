@@ -17,9 +17,14 @@ namespace {
 
 std::string temp_name_for(const std::filesystem::path& target) {
   static std::atomic<unsigned> counter{0};
-  return (target.parent_path() / ("." + target.filename().string() + ".tmp." +
-                                  std::to_string(::getpid()) + "." + std::to_string(counter++)))
-      .string();
+  // Built by appends: GCC 12 warns falsely (-Wrestrict) on "." + std::string&&.
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".tmp.";
+  name += std::to_string(::getpid());
+  name += '.';
+  name += std::to_string(counter++);
+  return (target.parent_path() / name).string();
 }
 
 void sync_file(const std::string& path) {
