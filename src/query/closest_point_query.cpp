@@ -1,0 +1,183 @@
+// Closest point on the hull: rtcPointQuery over the triangles gives the nearest triangle of each
+// nearby patch, Newton on the NURBS (hm::closest_point) gives the exact point.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "query/embree_device.h"
+#include "query/query_scene.h"
+
+namespace hm {
+namespace query {
+namespace {
+
+using Impl = HullQuery::Impl;
+
+struct TrianglePoint {
+  Vec3d point;
+  double b1 = 0, b2 = 0;  // barycentric weights of corners 1 and 2
+};
+
+// Closest point to p on triangle (a, b, c), by the Voronoi regions of its vertices and edges
+// (Ericson, Real-Time Collision Detection, 5.1.5). Degenerate triangles fall into a vertex or
+// edge region, never divide by zero.
+TrianglePoint closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Vec3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return {a, 0, 0};
+  const Vec3d bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return {b, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {a + v * ab, v, 0};
+  }
+  const Vec3d cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return {c, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {a + w * ac, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {b + w * (c - b), 1 - w, w};
+  }
+  const double denom = 1 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return {a + v * ab + w * ac, v, w};
+}
+
+struct SearchState {
+  const Impl* m = nullptr;
+  Vec3d q;  // local frame
+  double margin = 0;
+  double best = std::numeric_limits<double>::infinity();
+  PatchCandidates found;  // best triangle per patch, in the order met
+  std::exception_ptr error;
+};
+
+void offer(SearchState& s, PatchId patch, Index t, double d, double b1, double b2) {
+  PatchCandidates& f = s.found;
+  for (int i = 0; i < f.count; ++i) {
+    if (f.items[i].patch != patch) continue;
+    if (d < f.items[i].distance) f.items[i] = {patch, t, d, {b1, b2}};
+    return;
+  }
+  if (f.count < kMaxCandidates) {
+    f.items[f.count++] = {patch, t, d, {b1, b2}};
+    return;
+  }
+  auto worst = std::max_element(f.items.begin(), f.items.end(), [](const auto& a, const auto& b) {
+    return a.distance < b.distance;
+  });
+  if (d < worst->distance) *worst = {patch, t, d, {b1, b2}};
+}
+
+// Called by Embree for every triangle whose box meets the query sphere. Shrinks the sphere to the
+// nearest distance so far plus the margin. Must not throw into Embree.
+bool visit_triangle(RTCPointQueryFunctionArguments* args) noexcept {
+  auto& s = *static_cast<SearchState*>(args->userPtr);
+  try {
+    const Impl& m = *s.m;
+    const Index t = m.triangle(args->geomID, args->primID);
+    const auto& tri = m.tri[t];
+    const TrianglePoint cp =
+        closest_on_triangle(s.q, m.local[tri[0]], m.local[tri[1]], m.local[tri[2]]);
+    const double d = norm(cp.point - s.q);
+    offer(s, args->geomID, t, d, cp.b1, cp.b2);
+    if (d < s.best) {
+      s.best = d;
+      const float r =
+          std::nextafter(static_cast<float>(d + s.margin), std::numeric_limits<float>::infinity());
+      if (r < args->query->radius) {
+        args->query->radius = r;
+        return true;
+      }
+    }
+  } catch (...) {
+    if (!s.error) s.error = std::current_exception();
+  }
+  return false;
+}
+
+}  // namespace
+
+PatchCandidates patches_near(const Impl& m, const Vec3d& q_model, double extra) {
+  SearchState s;
+  s.m = &m;
+  s.q = q_model - m.centre;
+  s.margin = 2 * m.max_deviation + 1e-9 * m.length + extra;
+  RTCPointQuery query;
+  query.x = static_cast<float>(s.q.x);
+  query.y = static_cast<float>(s.q.y);
+  query.z = static_cast<float>(s.q.z);
+  query.time = 0;
+  query.radius = std::numeric_limits<float>::infinity();
+  RTCPointQueryContext ctx;
+  rtcInitPointQueryContext(&ctx);
+  rtcPointQuery(m.scene.get(), &query, &ctx, visit_triangle, &s);
+  if (s.error) std::rethrow_exception(s.error);
+
+  // Keep the patches within reach of the nearest, nearest first (ties by patch: deterministic).
+  // Insertion sort: at most kMaxCandidates items.
+  auto before = [](const PatchCandidate& a, const PatchCandidate& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.patch < b.patch;
+  };
+  PatchCandidates out;
+  for (int i = 0; i < s.found.count; ++i) {
+    const PatchCandidate& c = s.found.items[i];
+    if (!(c.distance <= s.best + s.margin)) continue;
+    int k = out.count++;
+    for (; k > 0 && before(c, out.items[k - 1]); --k) out.items[k] = out.items[k - 1];
+    out.items[k] = c;
+  }
+  // The candidates' uv fields held barycentric weights; turn them into (u, v).
+  for (int i = 0; i < out.count; ++i) {
+    PatchCandidate& c = out.items[i];
+    c.uv = m.uv_at(c.triangle, c.uv.x, c.uv.y);
+  }
+  return out;
+}
+
+}  // namespace query
+
+ClosestPoint HullQuery::closest_point(const Vec3d& q) const {
+  const Impl& m = *impl_;
+  ClosestPoint best;
+  if (!is_finite(q)) return best;
+  const query::PatchCandidates near = query::patches_near(m, q, 0.0);
+  best.distance = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < near.count; ++i) {
+    const query::PatchCandidate& c = near.items[i];
+    const NurbsSurface& surface = m.patches[c.patch].surface;
+    const SurfaceProjection proj = hm::closest_point(surface, q, c.uv.x, c.uv.y);
+    const Vec2d uv = query::polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});
+    const Vec3d point = evaluate(surface, uv.x, uv.y);
+    const double d = norm(q - point);
+    if (!(d < best.distance)) continue;
+    best.patch = c.patch;
+    best.face = m.tri_face[c.triangle];
+    best.uv = uv;
+    best.point = point;
+    best.distance = d;
+    best.on_surface = true;
+  }
+  if (best.valid()) best.normal = m.oriented_normal(best.patch, best.uv);
+  return best;
+}
+
+void HullQuery::closest_points(std::span<const Vec3d> queries, std::span<ClosestPoint> out) const {
+  if (out.size() != queries.size()) {
+    throw InternalError("closest_points: output size differs from input");
+  }
+  parallel_for(0, queries.size(), [&](std::size_t i) { out[i] = closest_point(queries[i]); });
+}
+
+}  // namespace hm
