@@ -70,6 +70,44 @@ Direction direction_lines(const NurbsSurface& s, bool along_u, const std::vector
   return d;
 }
 
+// Span breaks closer than min_gap to the previous kept one are dropped, unless the surface is
+// only C0 there (a knot of multiplicity >= degree: a crease the grid must follow). Real files
+// carry near-duplicate knots (0.1105 and 0.1106 on a 128 m hull); a grid line at each would make
+// cells thinner than the welding tolerance.
+std::vector<double> usable_breaks(const std::vector<double>& breaks,
+                                  const std::vector<double>& knots, int degree, double min_gap) {
+  auto crease = [&](double t) { return std::count(knots.begin(), knots.end(), t) >= degree; };
+  std::vector<double> kept{breaks.front()};
+  for (std::size_t k = 1; k + 1 < breaks.size(); ++k) {
+    const double t = breaks[k];
+    if (t - kept.back() >= min_gap) {
+      kept.push_back(t);
+    } else if (crease(t)) {
+      // The crease wins over a smooth break kept just before it (never over the domain start).
+      if (kept.size() > 1 && !crease(kept.back()))
+        kept.back() = t;
+      else if (kept.size() == 1)
+        continue;
+      else
+        kept.push_back(t);
+    }
+  }
+  const double last = breaks.back();
+  if (kept.size() > 1 && last - kept.back() < min_gap && !crease(kept.back())) kept.pop_back();
+  kept.push_back(last);
+  return kept;
+}
+
+// Parameter width that one edge_length spans on average along a direction.
+double parameter_step(const NurbsSurface& s, bool along_u, const std::vector<double>& across,
+                      double edge_length) {
+  const double a = along_u ? s.u0 : s.v0, b = along_u ? s.u1 : s.v1;
+  double total = 0;
+  for (double f : across) total += iso_line_length(s, along_u, f, a, b, 64);
+  const double mean_length = total / double(across.size());
+  return mean_length > 0 ? (b - a) * edge_length / mean_length : (b - a);
+}
+
 }  // namespace
 
 double iso_line_length(const NurbsSurface& s, bool along_u, double fixed, double a, double b,
@@ -94,6 +132,11 @@ GridLines grid_lines(const NurbsSurface& s, double edge_length, const ResourceLi
   if (bv.size() < 2) bv = {s.v0, s.v1};
   const std::vector<double> across_v = spread(s.v0, s.v1, kSampleLines);
   const std::vector<double> across_u = spread(s.u0, s.u1, kSampleLines);
+  // Breaks closer than a quarter of the wanted cell width are not worth a grid line.
+  bu = usable_breaks(bu, s.knots_u, s.degree_u,
+                     0.25 * parameter_step(s, true, across_v, edge_length));
+  bv = usable_breaks(bv, s.knots_v, s.degree_v,
+                     0.25 * parameter_step(s, false, across_u, edge_length));
   Direction du = direction_lines(s, true, bu, across_v, edge_length, min_cells_u);
   Direction dv = direction_lines(s, false, bv, across_u, edge_length, min_cells_v);
   const double cells = double(du.lines.size() - 1) * double(dv.lines.size() - 1);
