@@ -19,6 +19,8 @@ using Action = std::function<int()>;
 
 void register_info(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_generate(CLI::App& app, const GlobalOptions& global, Action& action);
+void register_tessellate(CLI::App& app, const GlobalOptions& global, Action& action);
+void register_section(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_convert(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_quality(CLI::App& app, const GlobalOptions& global, Action& action);
 

@@ -28,6 +28,8 @@ int run(int argc, char** argv) {
   Action action;
   register_info(app, global, action);
   register_generate(app, global, action);
+  register_tessellate(app, global, action);
+  register_section(app, global, action);
   register_convert(app, global, action);
   register_quality(app, global, action);
 

@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "nurbs/basis.h"
+#include "nurbs/evaluate_grid.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace hm {
@@ -402,6 +403,26 @@ double patch_area(const Patch& p) {
     if (q.pts.size() >= 3) polys.push_back(std::move(q));
   }
   return integrator.trimmed(domain, std::move(polys), 0.0, 0);
+}
+
+BBox3d patch_bbox(const Patch& p) {
+  const NurbsSurface& s = p.surface;
+  // Fewer samples per span on huge nets, so the cost stays bounded (at most ~4k per direction).
+  auto params = [](const std::vector<double>& breaks) {
+    const std::size_t spans = breaks.size() - 1;
+    if (spans > 4096) return uniform_params(breaks.front(), breaks.back(), 4097);
+    const int per_span = spans > 1024 ? 1 : 4;
+    std::vector<double> t;
+    for (std::size_t k = 0; k < spans; ++k)
+      for (int i = 0; i < per_span; ++i)
+        t.push_back(breaks[k] + (breaks[k + 1] - breaks[k]) * i / double(per_span));
+    t.push_back(breaks.back());
+    return t;
+  };
+  const std::vector<double> us = params(span_breaks_u(s)), vs = params(span_breaks_v(s));
+  BBox3d box;
+  for (const Vec3d& q : evaluate_grid(s, us, vs).positions) box.add(q);
+  return box;
 }
 
 }  // namespace hm

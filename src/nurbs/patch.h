@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bbox.h"
 #include "core/types.h"
 #include "nurbs/nurbs_curve.h"
 #include "nurbs/nurbs_surface.h"
@@ -47,5 +48,10 @@ std::vector<std::vector<Vec2d>> sample_loops_uv(const Patch& p, double tol_uv);
 // Area of the patch's surface (m^2), inside its loops, by Gauss-Legendre quadrature over the knot
 // spans (adaptively split where a trim loop crosses a cell).
 double patch_area(const Patch& p);
+
+// Bounding box of the surface over its whole parameter domain (trims ignored), from a grid of
+// 4 samples per knot span and direction: tight to the surface, unlike the control net's box,
+// which a curved patch overshoots (a Wigley's net reaches twice its beam).
+BBox3d patch_bbox(const Patch& p);
 
 }  // namespace hm

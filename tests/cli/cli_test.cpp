@@ -3,7 +3,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
 
 #include "support/test_support.h"
 
@@ -57,10 +60,21 @@ TEST(CliGenerate, LyingUnitsAreDetectedAndCanBeForced) {
   const auto j = info_json(igs);
   EXPECT_TRUE(j["units"]["implausible"].get<bool>());
   EXPECT_EQ(j["units"]["suggestion"], "m");
+  // Forced back to metres, the box is the one of the same hull written honestly.
+  const fs::path honest = dir / "honest.igs";
+  ASSERT_EQ(
+      run_hullmesh("-q generate round-bilge --length 120 -o '" + honest.string() + "'").exit_code,
+      0);
   const auto forced = info_json(igs, "--units m");
+  const auto truth = info_json(honest);
   EXPECT_TRUE(forced["units"]["forced"].get<bool>());
-  EXPECT_NEAR(forced["bbox_m"]["max"][0].get<double>() - forced["bbox_m"]["min"][0].get<double>(),
-              120.0, 1e-6);
+  EXPECT_FALSE(truth["units"]["implausible"].get<bool>());
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_DOUBLE_EQ(forced["bbox_m"]["min"][k].get<double>(),
+                     truth["bbox_m"]["min"][k].get<double>());
+    EXPECT_DOUBLE_EQ(forced["bbox_m"]["max"][k].get<double>(),
+                     truth["bbox_m"]["max"][k].get<double>());
+  }
 }
 
 TEST(CliErrors, OutOfRangePatchCountIsUsageError) {
@@ -126,8 +140,107 @@ TEST(CliInfo, TableNamesWhatAnEngineerNeeds) {
   const auto r = run_hullmesh("info '" + p.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   for (const char* key : {"sent by", "units", "patches", "surface types", "bounding box",
-                          "surface area", "skipped", "diagnostics", "surface of revolution"})
+                          "surface area", "diagnostics", "surface of revolution"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+}
+
+}  // namespace
+}  // namespace hm
+
+namespace hm {
+namespace {
+
+// Rows of a section CSV: polyline, label, closed, point, x, y, z, patch, u, v.
+struct CsvPoint {
+  int polyline;
+  std::string label;
+  double x, y, z;
+  int patch;
+};
+
+std::vector<CsvPoint> read_section_csv(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<CsvPoint> out;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string item;
+    while (std::getline(ss, item, ',')) f.push_back(item);
+    if (f.size() < 8) continue;
+    out.push_back({std::stoi(f[0]), f[1], std::stod(f[4]), std::stod(f[5]), std::stod(f[6]),
+                   std::stoi(f[7])});
+  }
+  return out;
+}
+
+TEST(CliTessellate, WritesMeshWithChordErrorWithinTolerance) {
+  const fs::path dir = test::scratch_dir("cli_tess");
+  const fs::path igs = dir / "chine.igs";
+  ASSERT_EQ(run_hullmesh("-q generate chine --patches 12 -o '" + igs.string() + "'").exit_code, 0);
+  const auto r = run_hullmesh("tessellate '" + igs.string() + "' --chord-tol-rel 1e-4 -o '" +
+                              (dir / "t.vtu").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("12 patches ->"), std::string::npos) << r.out;
+  std::ifstream in(dir / "t.vtu");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_NE(ss.str().find("Name=\"chord_error\""), std::string::npos);
+  EXPECT_NE(ss.str().find("Name=\"patch\""), std::string::npos);
+  // "max chord error E m (R of it)": the measured ratio must not exceed 1.
+  const auto at = r.out.find("m (");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_LE(std::stod(r.out.substr(at + 3)), 1.0) << r.out;
+}
+
+TEST(CliSection, WigleyStationsLieOnTheClosedForm) {
+  const double L = 100, B = 10, T = 6.25;
+  const fs::path dir = test::scratch_dir("cli_section");
+  const fs::path igs = dir / "w.igs";
+  ASSERT_EQ(
+      run_hullmesh("-q generate wigley --length 100 --beam 10 --draft 6.25 --depth 6.25 -o '" +
+                   igs.string() + "'")
+          .exit_code,
+      0);
+  const fs::path csv = dir / "s.csv";
+  const auto r = run_hullmesh("section '" + igs.string() + "' --stations 10 --z 3 --y 2 -o '" +
+                              csv.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto pts = read_section_csv(csv);
+  ASSERT_GT(pts.size(), 200u);
+  double worst = 0;
+  for (const CsvPoint& p : pts) {
+    const double xi = 2 * (p.x - L / 2) / L, zeta = (p.z - T) / T;
+    worst = std::max(worst, std::abs(p.y - B / 2 * (1 - xi * xi) * (1 - zeta * zeta)));
+  }
+  EXPECT_LT(worst, 1e-9 * L);
+}
+
+TEST(CliSection, Dtmb5415WaterlinesAreContinuousAcrossItsThreePatches) {
+  const fs::path hull = test::shared_hull("dtmb5415.iges");
+  if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
+  const fs::path dir = test::scratch_dir("cli_section_dtmb");
+  const fs::path csv = dir / "wl.csv";
+  const auto r = run_hullmesh("section '" + hull.string() + "' --z -0.1 --z 0 --z 0.2 -o '" +
+                              csv.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto pts = read_section_csv(csv);
+  std::map<std::string, std::set<int>> polylines, patches;
+  for (const CsvPoint& p : pts) {
+    polylines[p.label].insert(p.polyline);
+    patches[p.label].insert(p.patch);
+  }
+  ASSERT_EQ(polylines.size(), 3u);
+  for (const auto& [label, ids] : polylines) {
+    EXPECT_EQ(ids.size(), 1u) << label << ": one polyline from bow to stern";
+    EXPECT_EQ(patches[label].size(), 3u) << label << ": crosses all three patches";
+  }
+}
+
+TEST(CliSection, NoPlaneIsUsageError) {
+  const auto r = run_hullmesh("section /tmp/none.igs -o /tmp/x.csv");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
 }
 
 }  // namespace
