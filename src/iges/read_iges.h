@@ -16,17 +16,17 @@ namespace hm {
 
 // Global-section facts an engineer wants to see (IGES G parameters).
 struct IgesHeader {
-  std::string sending_system;   // G3 product id from sender, or G4 file name when absent
-  std::string file_name;        // G4
-  std::string native_system;    // G5 native system id
-  std::string preprocessor;     // G6
-  std::string author;           // G21
-  std::string organisation;     // G22
-  std::string date;             // G18
-  double model_scale = 1.0;     // G13
-  int unit_flag = 0;            // G14
-  std::string unit_name;        // G15
-  double min_resolution = 0;    // G19 (model units)
+  std::string sending_system;  // G3 product id from sender, or G4 file name when absent
+  std::string file_name;       // G4
+  std::string native_system;   // G5 native system id
+  std::string preprocessor;    // G6
+  std::string author;          // G21
+  std::string organisation;    // G22
+  std::string date;            // G18
+  double model_scale = 1.0;    // G13
+  int unit_flag = 0;           // G14
+  std::string unit_name;       // G15
+  double min_resolution = 0;   // G19 (model units)
 };
 
 struct UnitReport {
@@ -55,10 +55,10 @@ struct ImportResult {
   IgesHeader header;
   UnitReport units;
   std::vector<IgesGroup> groups;
-  std::map<int, int> skipped_by_type;  // entity type -> count of entities carrying no surface
+  std::map<int, int> skipped_by_type;   // entity type -> count of entities carrying no surface
   std::map<int, int> entities_by_type;  // every entity type -> count in the directory
   Diagnostics diagnostics;
-  BBox3d bbox;  // of the control nets after transforms, in metres
+  BBox3d bbox;  // of the surfaces (untrimmed domains) after transforms, in metres
 };
 
 // Parse from memory. `source_name` names the input in messages. Throws IgesError (malformed),
