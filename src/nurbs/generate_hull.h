@@ -13,18 +13,19 @@ namespace hm {
 
 enum class HullKind {
   kWigley,      // y = B/2 (1 - (2x/L)^2)(1 - (z/T)^2): exact biquadratic, closed-form hydrostatics
-  kRoundBilge,  // round bilge, bulbous bow, sonar dome and flat transom (a DTMB 5415-like combatant)
+  kRoundBilge,  // round bilge, bulbous bow, sonar dome and flat transom (a DTMB 5415-like
+                // combatant)
   kChine,       // hard-chine planing hull: knuckles at chine and transom
 };
 bool parse_hull_kind(const std::string& name, HullKind& kind);
 const char* to_string(HullKind k);
 
 struct HullDefects {
-  double gap = 0;            // opening between neighbouring patches, metres (0 = none)
-  double overlap = 0;        // fraction of a patch width by which patches overlap (0 = none)
+  double gap = 0;                 // opening between neighbouring patches, metres (0 = none)
+  double overlap = 0;             // fraction of a patch width by which patches overlap (0 = none)
   bool duplicate_points = false;  // repeated control rows (full-multiplicity knots)
-  int flip_every = 0;        // reverse every n-th patch's orientation (0 = none)
-  std::uint64_t seed = 1;    // for defects chosen at random
+  int flip_every = 0;             // reverse every n-th patch's orientation (0 = none)
+  std::uint64_t seed = 1;         // for defects chosen at random
 };
 
 struct HullSpec {
