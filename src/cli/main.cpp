@@ -18,6 +18,8 @@ int run(int argc, char** argv) {
   CLI::App app{"hullmesh " HULLMESH_VERSION
                ": panel meshes of ship hulls from IGES NURBS patches, for panel codes"};
   app.require_subcommand(1);
+  // Global options may also follow the command name: `hullmesh info -q FILE`.
+  app.fallthrough();
   app.set_version_flag("--version", "hullmesh " HULLMESH_VERSION);
   GlobalOptions global;
   app.add_option("--threads", global.threads, "Threads to use (0 = all cores)")

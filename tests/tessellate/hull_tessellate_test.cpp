@@ -26,15 +26,8 @@ TEST_P(GeneratedHullTest, MeetsToleranceAndTopology) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, GeneratedHullTest,
-                         ::testing::Combine(::testing::Values(HullKind::kWigley, HullKind::kChine),
-                                            ::testing::Values(1, 10, 100)));
-
-// The round-bilge generator's patches fold a region of their domain onto a curve (for one patch:
-// u in [0, 1/16] x v in [0.8, 0.9] maps onto the line x = 0, z = 3.438 at the transom), so the
-// triangles that straddle the fold cannot meet the chord tolerance. Re-enable when the generator
-// gives a regular parametrisation there.
-INSTANTIATE_TEST_SUITE_P(DISABLED_RoundBilgeFold, GeneratedHullTest,
-                         ::testing::Combine(::testing::Values(HullKind::kRoundBilge),
+                         ::testing::Combine(::testing::Values(HullKind::kWigley, HullKind::kChine,
+                                                              HullKind::kRoundBilge),
                                             ::testing::Values(1, 10, 100)));
 
 }  // namespace
