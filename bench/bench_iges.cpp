@@ -9,6 +9,7 @@
 
 #include "iges/read_iges.h"
 #include "iges/write_iges.h"
+#include "nurbs/evaluate_grid.h"
 #include "nurbs/generate_hull.h"
 
 namespace hm {
@@ -52,6 +53,28 @@ void BM_ParseKcs(benchmark::State& state) {
   parse_text(state, text, "kcs.iges");
 }
 BENCHMARK(BM_ParseKcs)->Unit(benchmark::kMillisecond);
+
+// The figure: parse ship_449_patches.iges, then evaluate a 100 x 100 grid on every patch.
+void BM_ParseAndGrid449(benchmark::State& state) {
+  static const std::string text = shared_file("ship_449_patches.iges");
+  if (text.empty()) {
+    state.SkipWithError("input not present");
+    return;
+  }
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const ImportResult r = read_iges(text, "ship_449_patches.iges");
+    points = 0;
+    for (const Patch& p : r.patches) {
+      const SurfaceSamples g = evaluate_grid(p.surface, 100, 100);
+      points += g.positions.size();
+      benchmark::DoNotOptimize(g.positions.data());
+    }
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * points));
+  state.counters["points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_ParseAndGrid449)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Ladder: generated round-bilge hulls of 1, 10, 100 and 1000 patches.
 void BM_ParseGenerated(benchmark::State& state) {
