@@ -46,11 +46,7 @@ void write_gdf(std::ostream& out, const SurfaceMesh& m, const MeshWriteOptions& 
     s.clear();
     for (int k = 0; k < 4; ++k) {
       const Vec3d& p = m.positions[f[is_triangle(f) && k == 3 ? 0 : k]];
-      append_real(s, p.x);
-      s += ' ';
-      append_real(s, p.y);
-      s += ' ';
-      append_real(s, p.z);
+      append_point(s, p);
       s += '\n';
     }
     put(out, s);

@@ -84,11 +84,7 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const MeshWriteOptions& 
       s += '\n';
     }
     for (const Vec3d& p : m.positions) {
-      append_real(s, p.x);
-      s += ' ';
-      append_real(s, p.y);
-      s += ' ';
-      append_real(s, p.z);
+      append_point(s, p);
       s += '\n';
     }
   }
@@ -190,11 +186,7 @@ class MshReader {
   }
 
  private:
-  std::string_view token(const char* what) {
-    std::string_view t;
-    if (!c_.next_token(t)) c_.fail(std::string("file ends before ") + what);
-    return t;
-  }
+  std::string_view token(const char* what) { return require_token(c_, what); }
   std::int64_t integer(const char* what) { return to_int(c_, token(what), what); }
   std::size_t count(const char* what, std::uint64_t limit, std::uint64_t min_bytes) {
     return to_count(c_, token(what), what, limit, min_bytes);

@@ -26,11 +26,7 @@ void write_obj(std::ostream& out, const SurfaceMesh& m, const MeshWriteOptions& 
                   " vertices, " + std::to_string(m.faces.size()) + " faces\n";
   for (const Vec3d& p : m.positions) {
     s += "v ";
-    append_real(s, p.x);
-    s += ' ';
-    append_real(s, p.y);
-    s += ' ';
-    append_real(s, p.z);
+    append_point(s, p);
     s += '\n';
   }
   Index group = kInvalid;

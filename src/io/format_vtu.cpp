@@ -38,11 +38,7 @@ void write_vtu(std::ostream& out, const SurfaceMesh& m, const MeshWriteOptions& 
        std::to_string(m.faces.size()) + "\">\n";
   s += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (const Vec3d& p : m.positions) {
-    append_real(s, p.x);
-    s += ' ';
-    append_real(s, p.y);
-    s += ' ';
-    append_real(s, p.z);
+    append_point(s, p);
     s += '\n';
   }
   s += "</DataArray>\n</Points>\n<Cells>\n";

@@ -216,4 +216,18 @@ bool collapse_repeated(const Index (&corners)[4], std::array<Index, 4>& face) {
   return true;
 }
 
+void append_point(std::string& s, const Vec3d& p) {
+  append_real(s, p.x);
+  s += ' ';
+  append_real(s, p.y);
+  s += ' ';
+  append_real(s, p.z);
+}
+
+std::string_view require_token(TextCursor& c, const char* what) {
+  std::string_view t;
+  if (!c.next_token(t)) c.fail(std::string("file ends before ") + what);
+  return t;
+}
+
 }  // namespace hm::io

@@ -81,12 +81,16 @@ std::size_t to_count(const TextCursor& c, std::string_view token, const char* wh
 // A vertex reference numbered from `base`, checked against count; returns the 0-based index.
 Index to_index(const TextCursor& c, std::string_view token, std::int64_t base, std::size_t count,
                const char* what);
+// The next token, or fail "file ends before <what>".
+std::string_view require_token(TextCursor& c, const char* what);
 Vec3d to_point(const TextCursor& c, std::string_view x, std::string_view y, std::string_view z);
 
 // Formatting for the writers: shortest text that reads back to the same double, always with a
 // decimal point or exponent dot so that readers expecting a real (Capytaine's regexes) see one.
 void append_real(std::string& s, double v);
 void append_uint(std::string& s, std::uint64_t v);
+// "x y z" (append_real each, separated by blanks), no line end.
+void append_point(std::string& s, const Vec3d& p);
 // A title on one line: control characters replaced by blanks, cut to max_chars.
 std::string one_line(const std::string& title, std::size_t max_chars);
 
