@@ -1,6 +1,8 @@
 // End-to-end tests of the hullmesh executable: what a user types, what comes back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -236,6 +238,68 @@ TEST(CliSection, Dtmb5415WaterlinesAreContinuousAcrossItsThreePatches) {
     EXPECT_EQ(ids.size(), 1u) << label << ": one polyline from bow to stern";
     EXPECT_EQ(patches[label].size(), 3u) << label << ": crosses all three patches";
   }
+}
+
+// The area under each Wigley body-plan curve is the sectional area A(x) = (2/3) T y_wl(x), and
+// the sectional areas integrate to the displacement 4/9 L B T (both sides). Stations sampled
+// densely, trapezoid rule in z along each curve and in x across them.
+TEST(CliSection, WigleyBodyPlanIntegratesToTheDisplacement) {
+  const double L = 100, B = 10, T = 6.25;
+  const fs::path dir = test::scratch_dir("cli_body_plan");
+  const fs::path igs = dir / "w.igs";
+  ASSERT_EQ(
+      run_hullmesh("-q generate wigley --length 100 --beam 10 --draft 6.25 --depth 6.25 -o '" +
+                   igs.string() + "'")
+          .exit_code,
+      0);
+  const fs::path csv = dir / "bp.csv";
+  const int n = 80;
+  ASSERT_EQ(run_hullmesh("section -q '" + igs.string() + "' --stations " + std::to_string(n) +
+                         " -o '" + csv.string() + "'")
+                .exit_code,
+            0);
+  std::map<int, std::vector<CsvPoint>> curves;
+  for (const CsvPoint& p : read_section_csv(csv)) curves[p.polyline].push_back(p);
+  ASSERT_EQ(curves.size(), static_cast<std::size_t>(n));
+  std::vector<std::pair<double, double>> areas{{0.0, 0.0}, {L, 0.0}};
+  for (const auto& [id, pts] : curves) {
+    double a = 0;
+    for (std::size_t k = 1; k < pts.size(); ++k)
+      a += 0.5 * (pts[k].y + pts[k - 1].y) * (pts[k].z - pts[k - 1].z);
+    a = std::abs(a);
+    const double xi = 2 * (pts.front().x - L / 2) / L;
+    const double exact = (2.0 / 3.0) * T * B / 2 * (1 - xi * xi);
+    EXPECT_NEAR(a, exact, 2e-3 * exact) << "station x = " << pts.front().x;
+    areas.push_back({pts.front().x, a});
+  }
+  std::sort(areas.begin(), areas.end());
+  double half_volume = 0;
+  for (std::size_t k = 1; k < areas.size(); ++k)
+    half_volume +=
+        0.5 * (areas[k].second + areas[k - 1].second) * (areas[k].first - areas[k - 1].first);
+  EXPECT_NEAR(2 * half_volume, 4.0 / 9.0 * L * B * T, 2e-3 * (4.0 / 9.0 * L * B * T));
+}
+
+TEST(CliSection, Dtmb5415StationsAreEachOneContinuousCurve) {
+  const fs::path hull = test::shared_hull("dtmb5415.iges");
+  if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
+  const fs::path dir = test::scratch_dir("cli_section_dtmb_st");
+  const fs::path csv = dir / "st.csv";
+  const auto r =
+      run_hullmesh("section -q '" + hull.string() + "' --stations 120 -o '" + csv.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  // The file's transom is open and raked: within 1% L of the stern a station cuts the bottom and
+  // the side as two curves with the opening between them. Everywhere else, one curve.
+  const double stern_x = 3.0596, length = 6.1191;
+  std::map<std::string, std::set<int>> polylines;
+  std::set<int> patches;
+  for (const CsvPoint& p : read_section_csv(csv)) {
+    patches.insert(p.patch);
+    if (p.x < stern_x - 0.01 * length) polylines[p.label].insert(p.polyline);
+  }
+  EXPECT_GE(polylines.size(), 115u);
+  for (const auto& [label, ids] : polylines) EXPECT_EQ(ids.size(), 1u) << label;
+  EXPECT_EQ(patches.size(), 3u);
 }
 
 TEST(CliSection, NoPlaneIsUsageError) {
