@@ -103,13 +103,17 @@ double best_seconds(const std::vector<Patch>& patches, const TessellateOptions& 
 }
 
 // Gmsh on the same file at the same edge length: wall seconds and triangles, or negative.
+constexpr int kGmshTimeoutSeconds = 120;
+
 double gmsh_seconds(const std::filesystem::path& iges, double h, std::size_t& triangles) {
   const char* skip = std::getenv("HM_BENCH_GMSH");
   if ((skip && std::string(skip) == "0") || std::system("command -v gmsh >/dev/null 2>&1") != 0)
     return -1;
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "hm_bench_gmsh.msh";
-  const std::string cmd = "gmsh '" + iges.string() + "' -2 -nt 1 -clmin " + std::to_string(h) +
-                          " -clmax " + std::to_string(h) + " -format msh2 -o '" + out.string() +
+  // Gmsh may run for many minutes on hundreds of patches: cap it, and report a timeout as such.
+  const std::string cmd = "timeout " + std::to_string(kGmshTimeoutSeconds) + " gmsh '" +
+                          iges.string() + "' -2 -nt 1 -clmin " + std::to_string(h) + " -clmax " +
+                          std::to_string(h) + " -format msh2 -o '" + out.string() +
                           "' >/dev/null 2>&1";
   const auto t0 = std::chrono::steady_clock::now();
   const int rc = std::system(cmd.c_str());
@@ -153,7 +157,8 @@ void print_goals() {
   std::size_t gmsh_tris = 0;
   const double g = gmsh_seconds(ship, o.edge_length, gmsh_tris);
   if (g < 0) {
-    std::printf("  gmsh: not run (not on PATH, failed, or HM_BENCH_GMSH=0)\n");
+    std::printf("  gmsh: no result (not on PATH, failed, over %d s, or HM_BENCH_GMSH=0)\n",
+                kGmshTimeoutSeconds);
     return;
   }
   std::printf("  gmsh -2 at the same edge length: %zu triangles in %.3f s\n", gmsh_tris, g);
