@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "kernels/bspline_basis.h"
 #include "nurbs/gauss_legendre.h"
 
 namespace hm {
@@ -92,21 +93,10 @@ WaterlineIntegrals integrate_below(const Column& column, const std::vector<doubl
 // ---------------------------------------------------------------------------------------------
 // B-spline interpolation (for the round-bilge hull)
 
-// Non-zero basis functions N_{span-p..span, p}(t) (The NURBS Book, A2.2).
+// Non-zero basis functions N_{span-p..span, p}(t): the kernel's, so the shapes and the patches
+// use the same arithmetic.
 void basis_functions(const std::vector<double>& knots, int p, int span, double t, double* out) {
-  std::vector<double> left(p + 1), right(p + 1);
-  out[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
-    left[j] = t - knots[span + 1 - j];
-    right[j] = knots[span + j] - t;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double tmp = out[r] / (right[r + 1] + left[j - r]);
-      out[r] = saved + right[r + 1] * tmp;
-      saved = left[j - r] * tmp;
-    }
-    out[j] = saved;
-  }
+  kernel::basis_funs(span, t, p, knots.data(), out);
 }
 
 // Clamped knots by averaging of uniform parameters i / (n - 1), and the LU factors of the

@@ -177,6 +177,13 @@ std::vector<CsvPoint> read_section_csv(const fs::path& p) {
   return out;
 }
 
+// The classic Wigley hull, L = 100 m, B = 10 m, T = D = 6.25 m, port half; returns the exit code.
+int generate_wigley(const fs::path& igs) {
+  return run_hullmesh("-q generate wigley --length 100 --beam 10 --draft 6.25 --depth 6.25 -o '" +
+                      igs.string() + "'")
+      .exit_code;
+}
+
 TEST(CliTessellate, WritesMeshWithChordErrorWithinTolerance) {
   const fs::path dir = test::scratch_dir("cli_tess");
   const fs::path igs = dir / "chine.igs";
@@ -200,11 +207,7 @@ TEST(CliSection, WigleyStationsLieOnTheClosedForm) {
   const double L = 100, B = 10, T = 6.25;
   const fs::path dir = test::scratch_dir("cli_section");
   const fs::path igs = dir / "w.igs";
-  ASSERT_EQ(
-      run_hullmesh("-q generate wigley --length 100 --beam 10 --draft 6.25 --depth 6.25 -o '" +
-                   igs.string() + "'")
-          .exit_code,
-      0);
+  ASSERT_EQ(generate_wigley(igs), 0);
   const fs::path csv = dir / "s.csv";
   const auto r = run_hullmesh("section '" + igs.string() + "' --stations 10 --z 3 --y 2 -o '" +
                               csv.string() + "'");
@@ -247,11 +250,7 @@ TEST(CliSection, WigleyBodyPlanIntegratesToTheDisplacement) {
   const double L = 100, B = 10, T = 6.25;
   const fs::path dir = test::scratch_dir("cli_body_plan");
   const fs::path igs = dir / "w.igs";
-  ASSERT_EQ(
-      run_hullmesh("-q generate wigley --length 100 --beam 10 --draft 6.25 --depth 6.25 -o '" +
-                   igs.string() + "'")
-          .exit_code,
-      0);
+  ASSERT_EQ(generate_wigley(igs), 0);
   const fs::path csv = dir / "bp.csv";
   const int n = 80;
   ASSERT_EQ(run_hullmesh("section -q '" + igs.string() + "' --stations " + std::to_string(n) +
