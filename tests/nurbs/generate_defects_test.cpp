@@ -11,15 +11,8 @@
 namespace hm {
 namespace {
 
-constexpr HullKind kKinds[] = {HullKind::kWigley, HullKind::kRoundBilge, HullKind::kChine};
-
-HullSpec spec_of(HullKind kind, int patches, bool full = false) {
-  HullSpec s;
-  s.kind = kind;
-  s.patches = patches;
-  s.full_hull = full;
-  return s;
-}
+using test::kKinds;
+using test::spec_of;
 
 TEST(GenerateDefects, GapsHaveTheAskedSize) {
   for (HullKind kind : kKinds) {

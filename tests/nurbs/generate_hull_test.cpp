@@ -15,15 +15,8 @@
 namespace hm {
 namespace {
 
-constexpr HullKind kKinds[] = {HullKind::kWigley, HullKind::kRoundBilge, HullKind::kChine};
-
-HullSpec spec_of(HullKind kind, int patches, bool full = false) {
-  HullSpec s;
-  s.kind = kind;
-  s.patches = patches;
-  s.full_hull = full;
-  return s;
-}
+using test::kKinds;
+using test::spec_of;
 
 double wigley_y(const HullSpec& s, double x, double z) {
   const double xi = 2.0 * (x - 0.5 * s.length) / s.length;

@@ -14,6 +14,17 @@
 
 namespace hm::test {
 
+// Every generated hull kind, and a spec with the generator's defaults otherwise.
+inline constexpr HullKind kKinds[] = {HullKind::kWigley, HullKind::kRoundBilge, HullKind::kChine};
+
+inline HullSpec spec_of(HullKind kind, int patches, bool full = false) {
+  HullSpec s;
+  s.kind = kind;
+  s.patches = patches;
+  s.full_hull = full;
+  return s;
+}
+
 // Side k of a patch: 0: u = u0, 1: u = u1, 2: v = v0, 3: v = v1.
 inline Vec3d edge_point(const NurbsSurface& s, int side, double t) {
   const double u = side == 0 ? s.u0 : (side == 1 ? s.u1 : s.u0 + t * (s.u1 - s.u0));
