@@ -23,5 +23,6 @@ void register_tessellate(CLI::App& app, const GlobalOptions& global, Action& act
 void register_section(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_convert(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_quality(CLI::App& app, const GlobalOptions& global, Action& action);
+void register_merge(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace hm::cli

@@ -34,6 +34,7 @@ int run(int argc, char** argv) {
   register_section(app, global, action);
   register_convert(app, global, action);
   register_quality(app, global, action);
+  register_merge(app, global, action);
 
   try {
     app.parse(argc, argv);

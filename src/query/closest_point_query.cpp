@@ -173,6 +173,33 @@ ClosestPoint HullQuery::closest_point(const Vec3d& q) const {
   return best;
 }
 
+ClosestPoint HullQuery::closest_point_excluding(const Vec3d& q, PatchId exclude,
+                                                double reach) const {
+  const Impl& m = *impl_;
+  ClosestPoint best;
+  if (!is_finite(q)) return best;
+  const query::PatchCandidates near = query::patches_near(m, q, std::max(reach, 0.0));
+  best.distance = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < near.count; ++i) {
+    const query::PatchCandidate& c = near.items[i];
+    if (c.patch == exclude || !(c.distance <= reach)) continue;
+    const NurbsSurface& surface = m.patches[c.patch].surface;
+    const SurfaceProjection proj = hm::closest_point(surface, q, c.uv.x, c.uv.y);
+    const Vec2d uv = query::polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});
+    const Vec3d point = evaluate(surface, uv.x, uv.y);
+    const double d = norm(q - point);
+    if (!(d < best.distance)) continue;
+    best.patch = c.patch;
+    best.face = m.tri_face[c.triangle];
+    best.uv = uv;
+    best.point = point;
+    best.distance = d;
+    best.on_surface = true;
+  }
+  if (best.valid()) best.normal = m.oriented_normal(best.patch, best.uv);
+  return best;
+}
+
 void HullQuery::closest_points(std::span<const Vec3d> queries, std::span<ClosestPoint> out) const {
   if (out.size() != queries.size()) {
     throw InternalError("closest_points: output size differs from input");

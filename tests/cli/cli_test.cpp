@@ -308,3 +308,38 @@ TEST(CliSection, NoPlaneIsUsageError) {
 
 }  // namespace
 }  // namespace hm
+
+namespace hm {
+namespace {
+
+// hullmesh merge: a generated chine hull with 0.1 m gaps becomes one surface; the report and
+// the three files say so.
+TEST(CliMerge, GappedChineHullMergesWithKnucklesAndBoundaries) {
+  const fs::path dir = test::scratch_dir("cli_merge");
+  const fs::path igs = dir / "chine.igs", vtu = dir / "merged.vtu";
+  ASSERT_EQ(test::run_hullmesh("-q generate chine --patches 24 --gap 0.1 -o '" + igs.string() + "'")
+                .exit_code,
+            0);
+  const auto r = test::run_hullmesh("merge '" + igs.string() + "' -o '" + vtu.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("0 non-manifold edges, 0 inconsistent edges"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("boundary loops: 1;"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("centre plane 1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("deck edge 1"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("knuckle lines: 0,"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(vtu));
+  EXPECT_GT(fs::file_size(dir / "merged_knuckles.vtk"), 100u);
+  EXPECT_GT(fs::file_size(dir / "merged_boundaries.vtk"), 100u);
+}
+
+TEST(CliMerge, MissingFileIsAnInputError) {
+  const fs::path dir = test::scratch_dir("cli_merge_missing");
+  const auto r = test::run_hullmesh("merge '" + (dir / "nope.igs").string() + "' -o '" +
+                                    (dir / "m.vtu").string() + "'");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("nope.igs"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "m.vtu"));
+}
+
+}  // namespace
+}  // namespace hm

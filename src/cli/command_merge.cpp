@@ -1,0 +1,173 @@
+// hullmesh merge FILE -o merged.vtu: one watertight hull from the patch triangulations, with its
+// knuckle lines and boundaries written beside it as VTK line sets.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/load_hull.h"
+#include "core/error.h"
+#include "io/write_mesh.h"
+#include "io/write_polylines.h"
+#include "mesh/adjacency.h"
+#include "tessellate/tessellate.h"
+#include "unstructured/features.h"
+#include "unstructured/merge.h"
+
+namespace hm::cli {
+namespace {
+
+struct MergeCommand {
+  std::string file;
+  std::string output;
+  std::string units;
+  std::string lines_prefix;  // default: the output path without its extension
+  TessellateOptions tessellate;
+  std::size_t triangles = 0;
+  MergeOptions merge;
+  FeatureOptions features;
+};
+
+std::vector<PolylineRecord> to_records(const SurfaceMesh& m, std::span<const FeatureLine> lines,
+                                       const std::string& label) {
+  std::vector<PolylineRecord> out;
+  for (const FeatureLine& l : lines) {
+    PolylineRecord r;
+    r.label = label;
+    r.closed = l.closed;
+    for (Index v : l.vertices) r.points.push_back(m.positions[v]);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+int run_merge(const MergeCommand& c, const GlobalOptions& g) {
+  const long long t0 = now_ns();
+  const ImportResult hull = load_hull(c.file, c.units, g.quiet);
+  const double t_import = seconds_since(t0);
+  TessellateOptions o = c.tessellate;
+  if (c.triangles > 0) o.edge_length = edge_length_for_triangles(hull.patches, c.triangles);
+  const Tessellation t = tessellate(hull.patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(hull.patches, t.mesh, c.merge, silent_progress());
+  const long long t1 = now_ns();
+  const EdgeAdjacency adj = build_edge_adjacency(merged.mesh.faces, merged.mesh.vertex_count());
+  if (!adj.nonmanifold_edges.empty()) {
+    // Keep the surface for inspection, but fail: no later stage can use it.
+    MeshWriteOptions w;
+    w.info.title = "hullmesh merged surface (non-manifold) of " + c.file;
+    write_mesh(c.output, merged.mesh, w);
+    const MeshEdge& e = adj.edges[adj.nonmanifold_edges.front()];
+    const Vec3d p = 0.5 * (merged.mesh.positions[e.v0] + merged.mesh.positions[e.v1]);
+    throw GeometryError(c.file + ": merging left " + std::to_string(adj.nonmanifold_edges.size()) +
+                        " edges with more than two faces (the first near x " + std::to_string(p.x) +
+                        ", y " + std::to_string(p.y) + ", z " + std::to_string(p.z) +
+                        " m); overlapping patches there? The surface is in " + c.output +
+                        " for inspection");
+  }
+  const FeatureSet features = find_features(merged.mesh, adj, hull.patches, c.features);
+  const double t_features = seconds_since(t1);
+
+  // Write the lines first: the mesh is the main output, and a failure leaves no mesh behind
+  // that looks complete without its lines.
+  std::filesystem::path prefix = c.lines_prefix;
+  if (prefix.empty()) prefix = std::filesystem::path(c.output).replace_extension();
+  const std::string knuckle_path = prefix.string() + "_knuckles.vtk";
+  const std::string boundary_path = prefix.string() + "_boundaries.vtk";
+  write_polylines(knuckle_path, to_records(merged.mesh, features.knuckles, "knuckle"));
+  std::vector<PolylineRecord> runs;
+  for (const BoundaryRun& b : features.boundaries) {
+    const FeatureLine& line = b;
+    std::vector<PolylineRecord> one =
+        to_records(merged.mesh, std::span<const FeatureLine>(&line, 1), to_string(b.kind));
+    runs.push_back(std::move(one.front()));
+  }
+  write_polylines(boundary_path, runs);
+  MeshWriteOptions w;
+  w.info.title = "hullmesh merged surface of " + c.file;
+  write_mesh(c.output, merged.mesh, w);
+
+  if (!g.quiet) {
+    const MergeReport& r = merged.report;
+    std::printf("%s: %zu patches, %zu triangles -> %zu triangles, %zu vertices\n", c.output.c_str(),
+                hull.patches.size(), r.input_triangles, merged.mesh.face_count(),
+                merged.mesh.vertex_count());
+    std::printf("  gaps closed: %zu (widest %.3g m); vertices welded %zu; T-junctions split %zu\n",
+                r.gaps_closed, r.widest_gap_closed, r.vertices_welded, r.tjunctions_split);
+    std::printf("  gaps left open: %zu", r.open_gaps.size());
+    if (!r.open_gaps.empty()) {
+      const OpenGap& gw = r.open_gaps.front();
+      std::printf(" (widest %.3g m between patches %u and %u at %.4g, %.4g, %.4g)", gw.width,
+                  gw.patch_a, gw.patch_b, gw.location.x, gw.location.y, gw.location.z);
+    }
+    std::printf("\n  overlaps removed: %zu triangles, %.4g m^2\n", r.overlap_triangles_removed,
+                r.overlap_area_removed);
+    std::printf("  patches flipped: %zu", r.patches_flipped.size());
+    for (std::size_t i = 0; i < r.patches_flipped.size() && i < 10; ++i) {
+      std::printf("%s%u", i ? ", " : " (", r.patches_flipped[i]);
+    }
+    std::printf("%s\n", r.patches_flipped.empty()       ? ""
+                        : r.patches_flipped.size() > 10 ? ", ...)"
+                                                        : ")");
+    std::printf("  knuckle lines: %zu, %.4g m", features.knuckles.size(),
+                features.knuckle_length());
+    std::printf("; corners: %zu\n", features.corners.size());
+    std::size_t by_kind[5] = {0, 0, 0, 0, 0};
+    double len_kind[5] = {0, 0, 0, 0, 0};
+    for (const BoundaryRun& b : features.boundaries) {
+      ++by_kind[int(b.kind)];
+      len_kind[int(b.kind)] += b.length;
+    }
+    std::printf("  boundary loops: %zu;", r.boundary_loops);
+    for (int k = 0; k < 5; ++k) {
+      if (by_kind[k])
+        std::printf(" %s %zu (%.4g m)", to_string(BoundaryKind(k)), by_kind[k], len_kind[k]);
+    }
+    std::printf(
+        "\n  topology: %zu non-manifold edges, %zu inconsistent edges, enclosed volume "
+        "%.6g m^3\n",
+        r.nonmanifold_edges, r.inconsistent_edges, r.enclosed_volume);
+    std::printf("  lines: %s, %s\n", knuckle_path.c_str(), boundary_path.c_str());
+    std::printf("  time: import %.3f s, tessellate %.3f s, merge %.3f s, features %.3f s\n",
+                t_import, t.summary.seconds, r.seconds, t_features);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_merge(CLI::App& app, const GlobalOptions& global, Action& action) {
+  auto c = std::make_shared<MergeCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "merge", "One watertight hull from the patches, with knuckle lines and boundaries");
+  cmd->add_option("file", c->file, "IGES file")->required();
+  cmd->add_option("-o,--output", c->output, "Output mesh (.vtu, .vtk, .stl, .obj, ...)")
+      ->required();
+  cmd->add_option("--lines", c->lines_prefix,
+                  "Prefix of the line files (default: the output without extension); writes "
+                  "PREFIX_knuckles.vtk and PREFIX_boundaries.vtk");
+  cmd->add_option("--edge-length", c->tessellate.edge_length,
+                  "Tessellation edge in metres (default L/100)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--triangles", c->triangles, "Tessellate to about this many triangles")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{50'000'000}));
+  cmd->add_option("--chord-tol", c->tessellate.chord_tolerance,
+                  "Chord tolerance in metres (default 1e-4 L)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--gap-tol", c->merge.gap_tolerance,
+                  "Widest gap closed, metres (default half the local border edge)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("!--keep-overlaps", c->merge.remove_overlaps,
+                "Do not remove layers where patches cover each other");
+  cmd->add_option("--knuckle-angle", c->features.knuckle_angle_deg,
+                  "Dihedral angle in degrees above which an edge may be a knuckle")
+      ->check(CLI::Range(1.0, 179.0));
+  cmd->add_option("--waterline-z", c->features.waterline_z,
+                  "z of a waterline cut: boundary edges on it are waterline");
+  cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
+      ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
+  cmd->callback([c, &global, &action] { action = [c, &global] { return run_merge(*c, global); }; });
+}
+
+}  // namespace hm::cli

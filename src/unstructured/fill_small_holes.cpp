@@ -1,0 +1,78 @@
+// Small holes: where three or four patches meet at a corner, zipping their borders pairwise can
+// leave a hole of one or two triangles' size. Closed boundary loops of 3 or 4 vertices that run
+// along two or more patches are such holes (a true boundary of a hull is never that short); they
+// are closed with one triangle or two (split along the shorter diagonal).
+#include <algorithm>
+#include <set>
+
+#include "mesh/adjacency.h"
+#include "unstructured/merge_steps.h"
+
+namespace hm::merge {
+
+namespace {
+
+// A boundary loop that passes a vertex twice (a hole touching the hull's outline at one vertex)
+// is several cycles; cut it there. Each cycle is (vertices, edges), edges[i] leaving vertices[i].
+std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const BoundaryLoop& loop) {
+  std::vector<std::pair<std::vector<Index>, std::vector<Index>>> out;
+  std::vector<Index> vs, es;
+  for (std::size_t i = 0; i < loop.vertices.size(); ++i) {
+    const Index v = loop.vertices[i];
+    auto again = std::find(vs.begin(), vs.end(), v);
+    if (again != vs.end()) {
+      const std::ptrdiff_t at = again - vs.begin();
+      out.push_back({std::vector<Index>(vs.begin() + at, vs.end()),
+                     std::vector<Index>(es.begin() + at, es.end())});
+      vs.resize(std::size_t(at));
+      es.resize(std::size_t(at));
+    }
+    vs.push_back(v);
+    es.push_back(loop.edges[i]);
+  }
+  out.push_back({std::move(vs), std::move(es)});
+  return out;
+}
+
+}  // namespace
+
+std::size_t fill_small_holes(Work& w) {
+  SurfaceMesh& m = w.mesh;
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  std::size_t filled = 0;
+  for (const BoundaryLoop& loop : adj.boundary_loops) {
+    if (!loop.closed) continue;
+    for (const auto& [r, edges] : cycles_of(loop)) {
+      if (r.size() < 3 || r.size() > 4) continue;
+      std::set<PatchId> patches;
+      Index first_face = kInvalid;
+      for (Index e : edges) {
+        const Index f = adj.edges[e].first_slot / 4;
+        patches.insert(m.face_patch[f]);
+        first_face = std::min(first_face, f);
+      }
+      if (patches.size() < 2) continue;
+      // The loop follows its faces' winding, so the new faces run against it.
+      std::vector<Face> add;
+      if (r.size() == 3) {
+        add.push_back({r[0], r[2], r[1], kInvalid});
+      } else if (norm(m.positions[r[0]] - m.positions[r[2]]) <=
+                 norm(m.positions[r[1]] - m.positions[r[3]])) {
+        add.push_back({r[0], r[2], r[1], kInvalid});
+        add.push_back({r[0], r[3], r[2], kInvalid});
+      } else {
+        add.push_back({r[1], r[3], r[2], kInvalid});
+        add.push_back({r[1], r[0], r[3], kInvalid});
+      }
+      for (const Face& f : add) {
+        m.faces.push_back(f);
+        m.face_patch.push_back(m.face_patch[first_face]);
+        w.face_old.push_back(w.face_old[first_face]);
+      }
+      ++filled;
+    }
+  }
+  return filled;
+}
+
+}  // namespace hm::merge

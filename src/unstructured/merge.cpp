@@ -1,0 +1,102 @@
+// merge_patches: the driver. Each step is its own file (see merge_steps.h).
+#include "unstructured/merge.h"
+
+#include <chrono>
+#include <string>
+
+#include "core/bbox.h"
+#include "core/error.h"
+#include "mesh/adjacency.h"
+#include "unstructured/merge_steps.h"
+
+namespace hm {
+namespace {
+
+void check_input(std::span<const Patch> patches, const SurfaceMesh& t) {
+  const std::size_t nv = t.vertex_count(), nf = t.face_count();
+  if (t.vertex_patch.size() != nv || t.vertex_uv.size() != nv || t.face_patch.size() != nf) {
+    throw GeometryError("merge: the triangulation lacks per-vertex patch/(u, v) or face patches");
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!is_triangle(t.faces[f]))
+      throw GeometryError("merge: face " + std::to_string(f) + " is not a triangle");
+    if (t.face_patch[f] >= patches.size()) {
+      throw GeometryError("merge: face " + std::to_string(f) + " names patch " +
+                          std::to_string(t.face_patch[f]) + " of " +
+                          std::to_string(patches.size()));
+    }
+    for (int c = 0; c < 3; ++c) {
+      if (t.faces[f][c] >= nv)
+        throw GeometryError("merge: face " + std::to_string(f) + " names a vertex out of range");
+    }
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (t.vertex_patch[v] >= patches.size()) {
+      throw GeometryError("merge: vertex " + std::to_string(v) + " names an unknown patch");
+    }
+  }
+}
+
+}  // namespace
+
+MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& triangulation,
+                            const MergeOptions& options, Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  check_input(patches, triangulation);
+  BBox3d box;
+  for (const Vec3d& p : triangulation.positions) box.add(p);
+  const Vec3d e = box.extent();
+  const double length = std::max({e.x, e.y, e.z, 1e-300});
+
+  merge::Work w;
+  w.mesh = triangulation;
+  w.mesh.face_block.clear();
+  w.face_old.resize(triangulation.face_count());
+  w.vert_old.resize(triangulation.vertex_count());
+  for (std::size_t f = 0; f < w.face_old.size(); ++f) w.face_old[f] = Index(f);
+  for (std::size_t v = 0; v < w.vert_old.size(); ++v) w.vert_old[v] = Index(v);
+
+  MergedSurface out;
+  MergeReport& r = out.report;
+  r.input_triangles = triangulation.face_count();
+  progress.stage("merge");
+  if (options.remove_overlaps) {
+    const merge::OverlapStats o = merge::remove_overlaps(patches, w, options, length, progress);
+    r.overlap_triangles_removed = o.triangles;
+    r.overlap_area_removed = o.area;
+  }
+  if (progress.cancelled()) throw UsageError("merge cancelled");
+  progress.update(0.4);
+  const merge::SnapStats s = merge::snap_borders(w, options, length);
+  r.vertices_welded = s.welded;
+  r.tjunctions_split = s.split;
+  r.gaps_closed = s.gaps_closed;
+  r.widest_gap_closed = s.widest;
+  r.degenerate_faces_dropped = merge::drop_degenerate(w, length);
+  progress.update(0.7);
+  r.patches_flipped = merge::orient_faces(patches, w);
+  // After orienting: the loops must follow one winding to be closed against it.
+  // Holes that touch at a vertex chain as one loop until one of them is closed: repeat a little.
+  for (int pass = 0; pass < 3; ++pass) {
+    const std::size_t filled = merge::fill_small_holes(w);
+    r.holes_filled += filled;
+    if (filled == 0) break;
+  }
+  merge::reorder_morton(w);
+  r.open_gaps = merge::find_open_gaps(w, options);
+
+  const EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  r.boundary_loops = adj.boundary_loops.size();
+  r.nonmanifold_edges = adj.nonmanifold_edges.size();
+  r.inconsistent_edges = adj.inconsistent_edges.size();
+  r.enclosed_volume = merge::enclosed_volume(w.mesh, adj);
+  progress.update(1.0);
+
+  out.mesh = std::move(w.mesh);
+  out.vert_new2old = std::move(w.vert_old);
+  out.face_new2old = std::move(w.face_old);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace hm

@@ -1,0 +1,78 @@
+// The border of a working merge mesh (every edge that one face uses), and a grid to find the
+// border edges near a point. Internal to src/unstructured.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+#include "core/vec.h"
+#include "mesh/surface_mesh.h"
+
+namespace hm::merge {
+
+struct BorderEdge {
+  Index v0 = kInvalid, v1 = kInvalid;  // as the face traverses it
+  Index face = kInvalid;
+  PatchId patch = kInvalid;
+};
+
+struct Border {
+  std::vector<BorderEdge> edges;    // by ascending undirected edge key
+  std::vector<Index> vertices;      // border vertices, ascending
+  std::vector<double> edge_length;  // per border vertex (same order): mean of its border edges, m
+};
+
+// Border edges from the faces' edge adjacency (edges used twice or more are not border).
+Border collect_border(const SurfaceMesh& mesh);
+
+// Border edges binned by midpoint in cubic cells wide enough that every edge within `reach` of a
+// point is in the 27 cells around the point's cell.
+class SegmentGrid {
+ public:
+  SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges, double reach);
+  // Calls f(edge index) for every edge that may lie within `reach` of p (a superset).
+  template <class F>
+  void for_each_near(const Vec3d& p, F&& f) const {
+    if (order_.empty()) return;
+    const std::int64_t cx = cell(p.x, 0), cy = cell(p.y, 1), cz = cell(p.z, 2);
+    for (std::int64_t dz = -1; dz <= 1; ++dz) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          const std::int64_t x = cx + dx, y = cy + dy, z = cz + dz;
+          if (x < 0 || y < 0 || z < 0 || x >= dims_[0] || y >= dims_[1] || z >= dims_[2]) continue;
+          const std::uint64_t k = key(x, y, z);
+          for (std::size_t i = first(k); i < order_.size() && keys_[i] == k; ++i) f(order_[i]);
+        }
+      }
+    }
+  }
+
+ private:
+  std::int64_t cell(double v, int axis) const;
+  std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return std::uint64_t(x) + std::uint64_t(dims_[0]) *
+                                  (std::uint64_t(y) + std::uint64_t(dims_[1]) * std::uint64_t(z));
+  }
+  std::size_t first(std::uint64_t k) const;
+
+  Vec3d lo_;
+  double size_ = 1;
+  std::int64_t dims_[3] = {0, 0, 0};
+  std::vector<std::uint64_t> keys_;  // sorted
+  std::vector<Index> order_;         // edge index per sorted key
+};
+
+// Unit direction into the face across border edge e, perpendicular to the edge (zero when the
+// face is degenerate).
+Vec3d edge_inward(const SurfaceMesh& m, const BorderEdge& e);
+
+// Closest point of segment [a, b] to p: parameter t in [0, 1] from a, and the distance.
+struct SegmentPoint {
+  double t = 0;
+  double distance = 0;
+};
+SegmentPoint closest_on_segment(const Vec3d& p, const Vec3d& a, const Vec3d& b);
+
+}  // namespace hm::merge

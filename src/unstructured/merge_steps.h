@@ -1,0 +1,70 @@
+// The steps of merge_patches, one file each. Internal to src/unstructured.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/progress.h"
+#include "mesh/adjacency.h"
+#include "mesh/surface_mesh.h"
+#include "nurbs/patch.h"
+#include "unstructured/merge.h"
+
+namespace hm::merge {
+
+// The mesh being merged: triangles, and for each face the input triangle it was cut from.
+struct Work {
+  SurfaceMesh mesh;
+  std::vector<Index> face_old;  // per face
+  std::vector<Index> vert_old;  // per vertex
+};
+
+// Per-vertex gap tolerance: options.gap_tolerance, or half the local border edge length.
+double vertex_tolerance(const MergeOptions& options, double border_edge_length);
+
+struct OverlapStats {
+  std::size_t triangles = 0;
+  double area = 0;  // m^2
+};
+// Finds border vertices of one patch that lie inside another patch's surface (closest point
+// within a few chord errors, normals compatible, away from that patch's border), grows the
+// covered region over the patch, removes it and moves the straddling corners onto the covering
+// patch's border. Of two patches covering each other, the higher-numbered one is cut.
+OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const MergeOptions& options,
+                             double length, Progress& progress);
+
+struct SnapStats {
+  std::size_t welded = 0;
+  std::size_t split = 0;
+  std::size_t gaps_closed = 0;
+  double widest = 0;  // m
+};
+// Welds border vertices of different patches and splits border edges at the other patches'
+// vertices (T-junctions), so that borders within tolerance meet vertex to vertex.
+SnapStats snap_borders(Work& w, const MergeOptions& options, double length);
+
+// Closes boundary loops of 3 or 4 vertices that run along two or more patches (the holes
+// pairwise zipping leaves where several patch corners meet). Returns the holes filled. The new
+// faces take the provenance of the loop's lowest-numbered face.
+std::size_t fill_small_holes(Work& w);
+
+// Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
+// number of faces dropped.
+std::size_t drop_degenerate(Work& w, double length);
+
+// Turns patches wound against their neighbours (by shared-edge votes, largest patch first) and
+// then each connected part so that its enclosed volume is positive. Returns the patches whose
+// final winding is against their declared orientation (NURBS su x sv, negated for reversed).
+std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w);
+
+// Volume enclosed by the mesh with every boundary loop closed by a fan from its centroid, m^3.
+double enclosed_volume(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
+
+// Border stretches of two patches that stay apart by more than the tolerance but less than
+// options.gap_report_edges local border edges, widest first.
+std::vector<OpenGap> find_open_gaps(const Work& w, const MergeOptions& options);
+
+// Reorders vertices and faces in Morton order (faces by centroid), updating the maps.
+void reorder_morton(Work& w);
+
+}  // namespace hm::merge

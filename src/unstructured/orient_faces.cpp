@@ -1,0 +1,167 @@
+// Orientation: one winding over the whole hull, normals out of the ship.
+//
+// declared winding (reversed patches turned) -> vote per patch pair over shared edges -> walk the
+// patch graph from the largest patch, turning patches that disagree -> turn each connected part
+// whose enclosed volume is negative -> report the patches that ended against their declaration.
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <queue>
+
+#include "core/bbox.h"
+#include "unstructured/merge_steps.h"
+
+namespace hm::merge {
+namespace {
+
+void reverse_face(Face& f) { std::swap(f[1], f[2]); }
+
+double det(const Vec3d& a, const Vec3d& b, const Vec3d& c) { return dot(a, cross(b, c)); }
+
+// Signed volume (times 6) of the faces listed, closed over the given loops, about origin o.
+double volume6(const SurfaceMesh& m, const EdgeAdjacency& adj, std::span<const Index> faces,
+               std::span<const Index> loops, const Vec3d& o) {
+  double v = 0;
+  for (Index f : faces) {
+    const Face& t = m.faces[f];
+    v += det(m.positions[t[0]] - o, m.positions[t[1]] - o, m.positions[t[2]] - o);
+  }
+  for (Index l : loops) {
+    const std::vector<Index>& ring = adj.boundary_loops[l].vertices;
+    if (ring.size() < 3) continue;
+    Vec3d c{};
+    for (Index r : ring) c += m.positions[r];
+    c = c / double(ring.size()) - o;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Vec3d a = m.positions[ring[i]] - o, b = m.positions[ring[(i + 1) % ring.size()]] - o;
+      v += det(c, b, a);  // the lid runs against the boundary's direction
+    }
+  }
+  return v;
+}
+
+Vec3d centre_of(const SurfaceMesh& m) {
+  BBox3d box;
+  for (const Vec3d& p : m.positions) box.add(p);
+  return box.center();
+}
+
+// Connected parts of the faces across manifold edges; part[f] numbered by lowest face.
+std::vector<Index> face_parts(const SurfaceMesh& m, const EdgeAdjacency& adj) {
+  std::vector<Index> parent(m.face_count());
+  std::iota(parent.begin(), parent.end(), Index{0});
+  const auto find = [&](Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::size_t s = 0; s < adj.opposite_face.size(); ++s) {
+    const Index g = adj.opposite_face[s];
+    if (g == kInvalid) continue;
+    Index a = find(Index(s / 4)), b = find(g);
+    if (a == b) continue;
+    if (b < a) std::swap(a, b);
+    parent[b] = a;
+  }
+  std::vector<Index> part(m.face_count());
+  for (std::size_t f = 0; f < part.size(); ++f) part[f] = find(Index(f));
+  return part;
+}
+
+}  // namespace
+
+double enclosed_volume(const SurfaceMesh& m, const EdgeAdjacency& adj) {
+  std::vector<Index> faces(m.face_count()), loops(adj.boundary_loops.size());
+  std::iota(faces.begin(), faces.end(), Index{0});
+  std::iota(loops.begin(), loops.end(), Index{0});
+  return volume6(m, adj, faces, loops, centre_of(m)) / 6;
+}
+
+std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w) {
+  SurfaceMesh& m = w.mesh;
+  const std::size_t np = patches.size();
+  std::vector<std::uint8_t> turned(np, 0);  // against the declared winding
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    if (patches[m.face_patch[f]].reversed) reverse_face(m.faces[f]);
+  }
+
+  // Votes across patch borders: (P, Q) -> edges wound alike minus edges wound opposite.
+  {
+    const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+    std::map<std::pair<PatchId, PatchId>, long> votes;
+    for (const MeshEdge& e : adj.edges) {
+      if (e.uses != 2) continue;
+      const Index f = e.first_slot / 4;
+      const Index g = adj.opposite_face[e.first_slot];
+      if (g == kInvalid) continue;
+      const PatchId p = m.face_patch[f], q = m.face_patch[g];
+      if (p == q) continue;
+      votes[{std::min(p, q), std::max(p, q)}] += e.same_direction ? 1 : -1;
+    }
+    std::vector<std::vector<std::pair<PatchId, bool>>> graph(np);  // neighbour, disagrees
+    for (const auto& [pq, v] : votes) {
+      if (v == 0) continue;
+      graph[pq.first].push_back({pq.second, v > 0});
+      graph[pq.second].push_back({pq.first, v > 0});
+    }
+    std::vector<std::size_t> size(np, 0);
+    for (PatchId p : m.face_patch) ++size[p];
+    std::vector<PatchId> roots(np);
+    std::iota(roots.begin(), roots.end(), PatchId{0});
+    std::stable_sort(roots.begin(), roots.end(),
+                     [&](PatchId a, PatchId b) { return size[a] > size[b]; });
+    std::vector<std::uint8_t> seen(np, 0);
+    for (PatchId root : roots) {
+      if (seen[root]) continue;
+      seen[root] = 1;
+      std::queue<PatchId> todo;
+      todo.push(root);
+      while (!todo.empty()) {
+        const PatchId p = todo.front();
+        todo.pop();
+        for (const auto& [q, disagrees] : graph[p]) {
+          if (seen[q]) continue;
+          seen[q] = 1;
+          turned[q] = turned[p] ^ std::uint8_t(disagrees);
+          todo.push(q);
+        }
+      }
+    }
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+      if (turned[m.face_patch[f]]) reverse_face(m.faces[f]);
+    }
+  }
+
+  // Outward: each connected part closed by fans must enclose a positive volume.
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  const std::vector<Index> part = face_parts(m, adj);
+  std::map<Index, std::pair<std::vector<Index>, std::vector<Index>>> parts;  // faces, loops
+  for (std::size_t f = 0; f < part.size(); ++f) parts[part[f]].first.push_back(Index(f));
+  for (std::size_t l = 0; l < adj.boundary_loops.size(); ++l) {
+    const BoundaryLoop& loop = adj.boundary_loops[l];
+    if (loop.edges.empty()) continue;
+    parts[part[adj.edges[loop.edges[0]].first_slot / 4]].second.push_back(Index(l));
+  }
+  const Vec3d o = centre_of(m);
+  std::vector<std::uint8_t> face_turned(m.face_count(), 0);
+  for (const auto& [id, fl] : parts) {
+    if (volume6(m, adj, fl.first, fl.second, o) >= 0) continue;
+    for (Index f : fl.first) {
+      reverse_face(m.faces[f]);
+      face_turned[f] = 1;
+    }
+  }
+
+  // A patch is reported turned when most of its faces end against its declared winding.
+  std::vector<long> against(np, 0);
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    const PatchId p = m.face_patch[f];
+    against[p] += (turned[p] ^ face_turned[f]) ? 1 : -1;
+  }
+  std::vector<PatchId> out;
+  for (std::size_t p = 0; p < np; ++p) {
+    if (against[p] > 0) out.push_back(PatchId(p));
+  }
+  return out;
+}
+
+}  // namespace hm::merge

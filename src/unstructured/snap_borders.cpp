@@ -1,0 +1,279 @@
+// Snap: border vertices of one patch meet the border of another vertex to vertex.
+//
+// collect the border -> for each border vertex, in parallel, find the nearest border vertex and
+// edge of other patches -> select welds (nearest first, never two vertices of one patch in a
+// cluster) and splits (a vertex well inside another patch's edge) -> apply: average welded
+// positions, move split vertices halfway onto the edge, replace each split triangle by a fan.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/parallel.h"
+#include "kernels/weld.h"
+#include "unstructured/merge_border.h"
+#include "unstructured/merge_steps.h"
+
+namespace hm::merge {
+namespace {
+
+// A vertex this close to an edge end (as a fraction of the edge) joins that end rather than
+// splitting the edge: the split would leave a sliver.
+constexpr double kEndFraction = 0.3;
+
+struct Split {
+  Index edge = kInvalid;  // border edge index
+  double t = 0;           // along v0 -> v1
+  double distance = 0;
+};
+
+// Two borders may be stitched only where their patches lie on different sides: continuing each
+// other (inward directions opposite) or meeting at a knuckle (about perpendicular). Inward
+// directions within 60 degrees mean the patches fold onto each other (a sliver of one patch
+// whose two border runs lie close together, a patch lying on another), and stitching there
+// would make an edge with three faces.
+constexpr double kFoldCos = 0.5;
+
+// Per border vertex: the mean inward direction of its border edges (unit, or zero).
+std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
+                                 std::span<const Index> local) {
+  std::vector<Vec3d> in(b.vertices.size(), Vec3d{});
+  for (const BorderEdge& e : b.edges) {
+    const Vec3d d = edge_inward(m, e);
+    in[local[e.v0]] += d;
+    in[local[e.v1]] += d;
+  }
+  for (Vec3d& d : in) {
+    const double n = norm(d);
+    d = n > 0 ? d / n : Vec3d{};
+  }
+  return in;
+}
+
+// Per border vertex: the nearest border edge of another patch within its tolerance.
+std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::span<const double> tol,
+                                 std::span<const Vec3d> inward) {
+  double reach = 0;
+  for (double t : tol) reach = std::max(reach, t);
+  const SegmentGrid grid(m.positions, b.edges, reach);
+  std::vector<Split> out(b.vertices.size());
+  parallel_for(0, b.vertices.size(), [&](std::size_t i) {
+    const Index v = b.vertices[i];
+    const Vec3d& p = m.positions[v];
+    const PatchId pv = m.vertex_patch[v];
+    Split best;
+    best.distance = std::numeric_limits<double>::infinity();
+    grid.for_each_near(p, [&](Index e) {
+      const BorderEdge& be = b.edges[e];
+      if (be.patch == pv || be.v0 == v || be.v1 == v) return;
+      if (dot(edge_inward(m, be), inward[i]) > kFoldCos) return;
+      const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
+      if (sp.distance < best.distance || (sp.distance == best.distance && e < best.edge)) {
+        best = {e, sp.t, sp.distance};
+      }
+    });
+    if (best.edge != kInvalid && best.distance <= tol[i]) out[i] = best;
+  });
+  return out;
+}
+
+}  // namespace
+
+double vertex_tolerance(const MergeOptions& options, double border_edge_length) {
+  return options.gap_tolerance > 0 ? options.gap_tolerance : 0.5 * border_edge_length;
+}
+
+SnapStats snap_borders(Work& w, const MergeOptions& options, double length) {
+  SurfaceMesh& m = w.mesh;
+  const Border b = collect_border(m);
+  const std::size_t nb = b.vertices.size();
+  std::vector<double> tol(nb);
+  for (std::size_t i = 0; i < nb; ++i) tol[i] = vertex_tolerance(options, b.edge_length[i]);
+  std::vector<Index> local(m.vertex_count(), kInvalid);  // mesh vertex -> border index
+  for (std::size_t i = 0; i < nb; ++i) local[b.vertices[i]] = Index(i);
+
+  // Collect: nearest other-patch edge of every border vertex.
+  const std::vector<Vec3d> inward = vertex_inward(m, b, local);
+  const std::vector<Split> near = nearest_edges(m, b, tol, inward);
+
+  // Score welds: a vertex near an edge end joins that end. Close pairs from the weld kernel
+  // catch vertices that meet at a patch corner where no edge is nearest.
+  std::vector<Vec3d> points(nb);
+  std::vector<std::uint32_t> group(nb);
+  double reach = 0;
+  for (std::size_t i = 0; i < nb; ++i) {
+    points[i] = m.positions[b.vertices[i]];
+    group[i] = m.vertex_patch[b.vertices[i]];
+    reach = std::max(reach, tol[i]);
+  }
+  std::vector<ClosePair> pairs;
+  if (nb > 1 && reach > 0) {
+    for (const ClosePair& p : find_close_pairs(points, group, reach)) {
+      const double limit = std::min({tol[p.a], tol[p.b], kEndFraction * 2 * b.edge_length[p.a],
+                                     kEndFraction * 2 * b.edge_length[p.b]});
+      if (p.distance <= limit && dot(inward[p.a], inward[p.b]) <= kFoldCos) pairs.push_back(p);
+    }
+  }
+  for (std::size_t i = 0; i < nb; ++i) {
+    const Split& s = near[i];
+    if (s.edge == kInvalid) continue;
+    const BorderEdge& e = b.edges[s.edge];
+    const Index end = s.t < 0.5 ? e.v0 : e.v1;
+    const double len = norm(m.positions[e.v1] - m.positions[e.v0]);
+    const double d = norm(points[i] - m.positions[end]);
+    if (d <= tol[i] && d <= kEndFraction * len) {
+      const Index j = local[end];
+      pairs.push_back({Index(std::min<std::size_t>(i, j)), Index(std::max<std::size_t>(i, j)), d});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const ClosePair& x, const ClosePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  pairs.erase(
+      std::unique(pairs.begin(), pairs.end(),
+                  [](const ClosePair& x, const ClosePair& y) { return x.a == y.a && x.b == y.b; }),
+      pairs.end());
+
+  // Select welds.
+  const std::vector<Index> rep = weld_clusters(nb, pairs, group);
+  // Patches in each cluster (at its representative), to keep splits from folding a patch onto
+  // itself.
+  std::vector<std::vector<PatchId>> cluster_patches(nb);
+  for (std::size_t i = 0; i < nb; ++i) cluster_patches[rep[i]].push_back(group[i]);
+  for (auto& c : cluster_patches) std::sort(c.begin(), c.end());
+  const auto in_cluster = [&](std::size_t i, PatchId p) {
+    const auto& c = cluster_patches[rep[i]];
+    return std::binary_search(c.begin(), c.end(), p);
+  };
+
+  SnapStats stats;
+  const double closed_floor = 1e-9 * length;
+  // Select splits: a vertex inside an edge whose ends are not in its cluster.
+  struct Insert {
+    Index edge;
+    double t;
+    Index vertex;  // border index of the representative
+    double distance;
+  };
+  std::vector<Insert> inserts;
+  for (std::size_t i = 0; i < nb; ++i) {
+    const Split& s = near[i];
+    if (s.edge == kInvalid) continue;
+    const BorderEdge& e = b.edges[s.edge];
+    if (in_cluster(i, e.patch)) continue;
+    const Index r = rep[i];
+    if (rep[local[e.v0]] == r || rep[local[e.v1]] == r) continue;
+    inserts.push_back({s.edge, s.t, r, s.distance});
+  }
+  // A cluster enters each other patch's border once, at its nearest edge: two members near one
+  // corner of that border would otherwise put it on two of its edges and fold the border.
+  std::sort(inserts.begin(), inserts.end(), [&](const Insert& x, const Insert& y) {
+    const PatchId px = b.edges[x.edge].patch, py = b.edges[y.edge].patch;
+    if (x.vertex != y.vertex) return x.vertex < y.vertex;
+    if (px != py) return px < py;
+    return x.distance != y.distance ? x.distance < y.distance : x.edge < y.edge;
+  });
+  inserts.erase(std::unique(inserts.begin(), inserts.end(),
+                            [&](const Insert& x, const Insert& y) {
+                              return x.vertex == y.vertex &&
+                                     b.edges[x.edge].patch == b.edges[y.edge].patch;
+                            }),
+                inserts.end());
+  for (const Insert& in : inserts) {
+    stats.widest = std::max(stats.widest, in.distance);
+    if (in.distance > closed_floor) ++stats.gaps_closed;
+  }
+  // By face, then edge, then position along the edge: the order the splits are applied in.
+  std::sort(inserts.begin(), inserts.end(), [&](const Insert& x, const Insert& y) {
+    const Index fx = b.edges[x.edge].face, fy = b.edges[y.edge].face;
+    if (fx != fy) return fx < fy;
+    return x.edge != y.edge ? x.edge < y.edge : (x.t != y.t ? x.t < y.t : x.vertex < y.vertex);
+  });
+  std::vector<std::uint8_t> is_inserted(nb, 0);
+  for (const Insert& in : inserts) is_inserted[in.vertex] = 1;
+
+  // Apply welds: the representative takes the mean position of its cluster.
+  std::vector<Vec3d> sum(nb, Vec3d{});
+  std::vector<std::uint32_t> count(nb, 0);
+  for (std::size_t i = 0; i < nb; ++i) {
+    sum[rep[i]] += points[i];
+    ++count[rep[i]];
+  }
+  std::vector<Index> vert_rep(m.vertex_count());
+  for (std::size_t v = 0; v < vert_rep.size(); ++v) vert_rep[v] = Index(v);
+  for (std::size_t i = 0; i < nb; ++i) {
+    vert_rep[b.vertices[i]] = b.vertices[rep[i]];
+    if (rep[i] != i) {
+      ++stats.welded;
+      // The gap is the distance across to the other border, not along it to the vertex joined.
+      const double across = near[i].edge != kInvalid ? near[i].distance : 0.0;
+      stats.widest = std::max(stats.widest, across);
+      if (across > closed_floor) ++stats.gaps_closed;
+    }
+  }
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (count[i] > 1) m.positions[b.vertices[i]] = sum[i] / double(count[i]);
+  }
+  // Split vertices that joined no cluster move halfway across the gap (each side gives half).
+  for (std::size_t i = 0; i < nb; ++i) {
+    const Split& s = near[i];
+    if (s.edge == kInvalid || count[rep[i]] > 1) continue;
+    if (!is_inserted[i]) continue;
+    const BorderEdge& e = b.edges[s.edge];
+    const Vec3d on_edge = m.positions[e.v0] + s.t * (m.positions[e.v1] - m.positions[e.v0]);
+    m.positions[b.vertices[i]] = 0.5 * (points[i] + on_edge);
+  }
+  for (Face& f : m.faces) {
+    for (int c = 0; c < 3; ++c) f[c] = vert_rep[f[c]];
+  }
+
+  // Apply splits: each split edge's triangle becomes a fan from its opposite corner; a triangle
+  // with several split edges is split edge by edge, each time in the piece holding that edge.
+  std::size_t k = 0;
+  std::vector<Face> pieces;
+  while (k < inserts.size()) {
+    const Index face = b.edges[inserts[k].edge].face;
+    pieces.assign(1, m.faces[face]);
+    std::size_t end = k;
+    while (end < inserts.size() && b.edges[inserts[end].edge].face == face) ++end;
+    std::size_t q = k;
+    while (q < end) {
+      const Index edge = inserts[q].edge;
+      std::vector<Index> mids;
+      for (; q < end && inserts[q].edge == edge; ++q) {
+        const Index v = b.vertices[inserts[q].vertex];
+        if (mids.empty() || mids.back() != v) mids.push_back(v);
+      }
+      const Index a = vert_rep[b.edges[edge].v0], c = vert_rep[b.edges[edge].v1];
+      for (std::size_t pi = 0; pi < pieces.size(); ++pi) {
+        const Face f = pieces[pi];
+        int at = -1;
+        for (int s = 0; s < 3; ++s) {
+          if (f[s] == a && f[(s + 1) % 3] == c) at = s;
+        }
+        if (at < 0) continue;
+        const Index apex = f[(at + 2) % 3];
+        std::vector<Index> chain{a};
+        for (Index v : mids) {
+          if (v != a && v != c && v != apex) chain.push_back(v);
+        }
+        chain.push_back(c);
+        pieces.erase(pieces.begin() + std::ptrdiff_t(pi));
+        for (std::size_t s = 0; s + 1 < chain.size(); ++s) {
+          pieces.push_back({chain[s], chain[s + 1], apex, kInvalid});
+        }
+        stats.split += chain.size() - 2;
+        break;
+      }
+    }
+    m.faces[face] = pieces[0];
+    for (std::size_t pi = 1; pi < pieces.size(); ++pi) {
+      m.faces.push_back(pieces[pi]);
+      m.face_patch.push_back(m.face_patch[face]);
+      w.face_old.push_back(w.face_old[face]);
+    }
+    k = end;
+  }
+  return stats;
+}
+
+}  // namespace hm::merge

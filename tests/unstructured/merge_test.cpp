@@ -1,0 +1,205 @@
+// Merging patch triangulations: generated hulls with injected defects (gaps, duplicated points,
+// wrong orientation flags, a pairwise overlap) and the real hulls in ../shared/data/hulls.
+#include "unstructured/merge.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "iges/read_iges.h"
+#include "mesh/adjacency.h"
+#include "nurbs/generate_hull.h"
+#include "support/test_support.h"
+#include "tessellate/tessellate.h"
+#include "unstructured/features.h"
+
+namespace hm {
+namespace {
+
+struct Merged {
+  std::vector<Patch> patches;
+  Tessellation tess;
+  MergedSurface merged;
+  EdgeAdjacency adj;
+};
+
+Merged merge_of(std::vector<Patch> patches, double edge_length = 0) {
+  Merged m;
+  m.patches = std::move(patches);
+  TessellateOptions o;
+  o.edge_length = edge_length;
+  m.tess = tessellate(m.patches, o, silent_progress());
+  m.merged = merge_patches(m.patches, m.tess.mesh, {}, silent_progress());
+  m.adj = build_edge_adjacency(m.merged.mesh.faces, m.merged.mesh.vertex_count());
+  return m;
+}
+
+GeneratedHull generated(HullKind kind, int patches, HullDefects defects = {}) {
+  HullSpec spec;
+  spec.kind = kind;
+  spec.patches = patches;
+  spec.defects = defects;
+  return generate_hull(spec);
+}
+
+double total_area(const SurfaceMesh& m) {
+  double a = 0;
+  for (const Face& f : m.faces) a += face_area(m.positions, f);
+  return a;
+}
+
+// A half hull merges into one surface whose only boundary is its outline (centre plane, deck).
+void expect_clean_half_hull(const Merged& m, const std::string& what) {
+  SCOPED_TRACE(what);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  EXPECT_GT(m.merged.report.enclosed_volume, 0.0);
+  EXPECT_EQ(m.merged.mesh.face_patch.size(), m.merged.mesh.face_count());
+  EXPECT_EQ(m.merged.face_new2old.size(), m.merged.mesh.face_count());
+  for (std::size_t f = 0; f < m.merged.mesh.face_count(); ++f) {
+    // Provenance: every face keeps the patch of the input triangle it was cut from.
+    ASSERT_EQ(m.merged.mesh.face_patch[f], m.tess.mesh.face_patch[m.merged.face_new2old[f]]);
+  }
+}
+
+TEST(Merge, CleanMultiPatchHullsBecomeOneSurface) {
+  for (HullKind kind : {HullKind::kWigley, HullKind::kRoundBilge, HullKind::kChine}) {
+    const Merged m = merge_of(generated(kind, 24).patches);
+    expect_clean_half_hull(m, to_string(kind));
+    // Merging moves vertices along shared borders only: the area stays that of the patches.
+    EXPECT_NEAR(total_area(m.merged.mesh) / total_area(m.tess.mesh), 1.0, 1e-3);
+    EXPECT_TRUE(m.merged.report.patches_flipped.empty());
+  }
+}
+
+TEST(Merge, ClosesGapsOfOneThousandthOfTheLength) {
+  HullDefects d;
+  d.gap = 0.1;  // 1e-3 L
+  const Merged m = merge_of(generated(HullKind::kWigley, 24, d).patches);
+  expect_clean_half_hull(m, "wigley, 0.1 m gaps");
+  EXPECT_GT(m.merged.report.gaps_closed, 0u);
+  EXPECT_GT(m.merged.report.widest_gap_closed, 0.04);
+  EXPECT_LT(m.merged.report.widest_gap_closed, 0.2);
+  EXPECT_TRUE(m.merged.report.open_gaps.empty());
+}
+
+TEST(Merge, ReportsGapsWiderThanTheTolerance) {
+  HullDefects d;
+  d.gap = 0.1;
+  Merged m;
+  m.patches = generated(HullKind::kWigley, 4, d).patches;
+  m.tess = tessellate(m.patches, {}, silent_progress());
+  MergeOptions o;
+  o.gap_tolerance = 0.02;  // narrower than the gaps
+  m.merged = merge_patches(m.patches, m.tess.mesh, o, silent_progress());
+  ASSERT_FALSE(m.merged.report.open_gaps.empty());
+  // Straight across a side the gap is 0.1 m; the widest point of a stretch may lie where patch
+  // corners meet and the borders no longer face each other, so only a lower bound is exact.
+  for (const OpenGap& g : m.merged.report.open_gaps) {
+    EXPECT_LT(g.patch_a, g.patch_b);
+    EXPECT_GT(g.width, 0.08);
+    EXPECT_GT(g.vertices, 0u);
+  }
+  // The gaps stay open: the outline is not the only boundary.
+  EXPECT_GT(
+      build_edge_adjacency(m.merged.mesh.faces, m.merged.mesh.vertex_count()).boundary_loops.size(),
+      1u);
+}
+
+TEST(Merge, DuplicatedPointsChangeNothing) {
+  HullDefects d;
+  d.duplicate_points = true;
+  const Merged m = merge_of(generated(HullKind::kRoundBilge, 24, d).patches);
+  expect_clean_half_hull(m, "round bilge, duplicated points");
+}
+
+TEST(Merge, PatchesWithWrongOrientationFlagsAreTurned) {
+  GeneratedHull h = generated(HullKind::kChine, 12);
+  // A file that declares some patches with the wrong orientation: their normals point in.
+  std::vector<PatchId> wrong = {1, 4, 7};
+  for (PatchId p : wrong) h.patches[p].reversed = !h.patches[p].reversed;
+  const Merged m = merge_of(h.patches);
+  expect_clean_half_hull(m, "chine, three wrong flags");
+  EXPECT_EQ(m.merged.report.patches_flipped, wrong);
+  // Every face normal points out of the hull: away from the centre plane on the side.
+  const Merged ref = merge_of(generated(HullKind::kChine, 12).patches);
+  EXPECT_NEAR(m.merged.report.enclosed_volume, ref.merged.report.enclosed_volume,
+              1e-9 * ref.merged.report.enclosed_volume);
+}
+
+TEST(Merge, PairwiseOverlapIsCutAway) {
+  HullDefects d;
+  d.overlap = 0.05;
+  const Merged m = merge_of(generated(HullKind::kWigley, 2, d).patches);
+  const Merged ref = merge_of(generated(HullKind::kWigley, 2).patches);
+  expect_clean_half_hull(m, "wigley, 2 overlapping patches");
+  EXPECT_GT(m.merged.report.overlap_area_removed, 0.0);
+  // What remains covers the hull once.
+  EXPECT_NEAR(total_area(m.merged.mesh) / total_area(ref.merged.mesh), 1.0, 2e-3);
+  EXPECT_NEAR(total_area(m.tess.mesh) - m.merged.report.overlap_area_removed,
+              total_area(m.merged.mesh), 2e-3 * total_area(m.merged.mesh));
+}
+
+TEST(Merge, SameBytesWithOneAndTwoThreads) {
+  HullDefects d;
+  d.gap = 0.05;
+  const std::vector<Patch> patches = generated(HullKind::kRoundBilge, 24, d).patches;
+  MergedSurface one, two;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    one = merge_of(patches).merged;
+  }
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+    two = merge_of(patches).merged;
+  }
+  ASSERT_EQ(one.mesh.vertex_count(), two.mesh.vertex_count());
+  ASSERT_EQ(one.mesh.faces, two.mesh.faces);
+  for (std::size_t v = 0; v < one.mesh.vertex_count(); ++v) {
+    ASSERT_EQ(one.mesh.positions[v].x, two.mesh.positions[v].x);
+    ASSERT_EQ(one.mesh.positions[v].y, two.mesh.positions[v].y);
+    ASSERT_EQ(one.mesh.positions[v].z, two.mesh.positions[v].z);
+  }
+  EXPECT_EQ(one.vert_new2old, two.vert_new2old);
+  EXPECT_EQ(one.face_new2old, two.face_new2old);
+}
+
+TEST(Merge, ChineKnucklesAreFoundAcrossPatchBorders) {
+  const GeneratedHull h = generated(HullKind::kChine, 24);
+  const Merged m = merge_of(h.patches);
+  const FeatureSet f = find_features(m.merged.mesh, m.adj, m.patches, {});
+  double truth = 0;
+  for (const auto& line : h.facts.knuckles) {
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) truth += norm(line[i + 1] - line[i]);
+  }
+  EXPECT_NEAR(f.knuckle_length() / truth, 1.0, 0.01);
+}
+
+TEST(Merge, RejectsInconsistentInput) {
+  const GeneratedHull h = generated(HullKind::kWigley, 2);
+  Tessellation t = tessellate(h.patches, {}, silent_progress());
+  t.mesh.face_patch[0] = 7;
+  EXPECT_THROW(merge_patches(h.patches, t.mesh, {}, silent_progress()), GeometryError);
+}
+
+// The real hulls that merge into one surface with only their outline open.
+class MergeSharedHull : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(MergeSharedHull, OneSurfaceWithOnlyItsOutlineOpen) {
+  HM_REQUIRE_SHARED_HULL(path, GetParam());
+  const ImportResult hull = read_iges_file(path.string());
+  const Merged m = merge_of(hull.patches);
+  expect_clean_half_hull(m, GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Hulls, MergeSharedHull,
+                         ::testing::Values("wigley.iges", "series60.iges", "dtmb5415.iges",
+                                           "kcs.iges"));
+
+}  // namespace
+}  // namespace hm
