@@ -4,7 +4,9 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <exception>
 #include <mutex>
@@ -55,6 +57,18 @@ void parallel_for_each_item(std::size_t count, F&& f) {
                       }
                     });
   if (error) std::rethrow_exception(error);
+}
+
+// Sorts [first, last) by `less`, in parallel above the serial cut-off. Equal elements may end in
+// any order, so `less` must be a strict total order on the values present (break ties by index)
+// for the result to be thread-count independent.
+template <class It, class Less>
+void parallel_sort(It first, It last, Less less) {
+  if (static_cast<std::size_t>(last - first) < 16 * kSerialCutoff) {
+    std::sort(first, last, less);
+  } else {
+    tbb::parallel_sort(first, last, less);
+  }
 }
 
 }  // namespace hm

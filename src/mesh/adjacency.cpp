@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace hm {
 namespace {
@@ -24,9 +25,12 @@ std::array<Index, 2> directed(std::span<const Face> faces, Index slot) {
   return {f[c], f[(c + 1) % corner_count(f)]};
 }
 
+// Keys sorted by (min vertex, max vertex, slot): a counting sort on the min vertex (count ->
+// exclusive scan -> scatter in slot order), then an insertion sort inside each vertex's bucket,
+// which holds only that vertex's few edges. Linear, and the same for any thread count.
 std::vector<EdgeKey> collect_keys(std::span<const Face> faces, std::size_t vertex_count) {
-  std::vector<EdgeKey> keys;
-  keys.reserve(faces.size() * 4);
+  std::vector<Index> count(vertex_count + 1, 0);
+  std::size_t total = 0;
   for (std::size_t fi = 0; fi < faces.size(); ++fi) {
     const Face& f = faces[fi];
     const int n = corner_count(f);
@@ -39,10 +43,36 @@ std::vector<EdgeKey> collect_keys(std::span<const Face> faces, std::size_t verte
                             std::to_string(vertex_count) + " vertices");
       }
       if (a == b) continue;  // a collapsed corner has no edge
-      keys.push_back({pack(std::min(a, b), std::max(a, b)), static_cast<Index>(4 * fi + c)});
+      ++count[std::min(a, b) + 1];
+      ++total;
     }
   }
-  std::sort(keys.begin(), keys.end());
+  for (std::size_t v = 0; v < vertex_count; ++v) count[v + 1] += count[v];
+  std::vector<EdgeKey> keys(total);
+  std::vector<Index> next(count.begin(), count.end() - 1);
+  for (std::size_t fi = 0; fi < faces.size(); ++fi) {
+    const Face& f = faces[fi];
+    const int n = corner_count(f);
+    for (int c = 0; c < n; ++c) {
+      const Index a = f[c];
+      const Index b = f[(c + 1) % n];
+      if (a == b) continue;
+      keys[next[std::min(a, b)]++] = {pack(std::min(a, b), std::max(a, b)),
+                                      static_cast<Index>(4 * fi + c)};
+    }
+  }
+  parallel_for(
+      0, vertex_count,
+      [&](std::size_t v) {
+        // Slots arrive ascending, so sorting by key keeps equal keys in slot order.
+        for (Index i = count[v] + 1; i < count[v + 1]; ++i) {
+          const EdgeKey k = keys[i];
+          Index j = i;
+          for (; j > count[v] && k < keys[j - 1]; --j) keys[j] = keys[j - 1];
+          keys[j] = k;
+        }
+      },
+      4096);
   return keys;
 }
 

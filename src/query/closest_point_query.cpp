@@ -173,8 +173,8 @@ ClosestPoint HullQuery::closest_point(const Vec3d& q) const {
   return best;
 }
 
-ClosestPoint HullQuery::closest_point_excluding(const Vec3d& q, PatchId exclude,
-                                                double reach) const {
+ClosestPoint HullQuery::closest_point_in_range(const Vec3d& q, PatchId first, PatchId last,
+                                              double reach) const {
   const Impl& m = *impl_;
   ClosestPoint best;
   if (!is_finite(q)) return best;
@@ -182,7 +182,7 @@ ClosestPoint HullQuery::closest_point_excluding(const Vec3d& q, PatchId exclude,
   best.distance = std::numeric_limits<double>::infinity();
   for (int i = 0; i < near.count; ++i) {
     const query::PatchCandidate& c = near.items[i];
-    if (c.patch == exclude || !(c.distance <= reach)) continue;
+    if (c.patch < first || c.patch >= last || !(c.distance <= reach)) continue;
     const NurbsSurface& surface = m.patches[c.patch].surface;
     const SurfaceProjection proj = hm::closest_point(surface, q, c.uv.x, c.uv.y);
     const Vec2d uv = query::polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});

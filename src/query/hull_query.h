@@ -102,10 +102,11 @@ class HullQuery {
   void first_hits(std::span<const Ray> rays, std::span<RayHit> out) const;
 
   ClosestPoint closest_point(const Vec3d& q) const;
-  // The closest point on any patch but `exclude` among those whose triangles come within `reach`
-  // metres of q (beyond the nearest triangle of all); invalid when none does. For finding where
-  // one patch lies on another (overlaps).
-  ClosestPoint closest_point_excluding(const Vec3d& q, PatchId exclude, double reach) const;
+  // The closest point on the patches numbered first <= p < last whose triangles come within
+  // `reach` metres of q (beyond the nearest triangle of all); invalid when none does. For
+  // finding where one patch lies on others (overlaps).
+  ClosestPoint closest_point_in_range(const Vec3d& q, PatchId first, PatchId last,
+                                      double reach) const;
   void closest_points(std::span<const Vec3d> queries, std::span<ClosestPoint> out) const;
 
   // The hull cut by a plane; empty when the plane misses. The BVH finds the crossed triangles.

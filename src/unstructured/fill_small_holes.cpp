@@ -1,7 +1,9 @@
 // Small holes: where three or four patches meet at a corner, zipping their borders pairwise can
 // leave a hole of one or two triangles' size. Closed boundary loops of 3 or 4 vertices that run
 // along two or more patches are such holes (a true boundary of a hull is never that short); they
-// are closed with one triangle or two (split along the shorter diagonal).
+// are closed with one triangle or two (split along the shorter diagonal). Longer loops (up to 16
+// vertices) are closed only when their perimeter is shorter than the longest edge of the faces
+// along them: pinholes.
 #include <algorithm>
 #include <set>
 
@@ -11,6 +13,8 @@
 namespace hm::merge {
 
 namespace {
+
+constexpr std::size_t kMaxHoleVertices = 16;
 
 // A boundary loop that passes a vertex twice (a hole touching the hull's outline at one vertex)
 // is several cycles; cut it there. Each cycle is (vertices, edges), edges[i] leaving vertices[i].
@@ -43,19 +47,32 @@ std::size_t fill_small_holes(Work& w) {
   for (const BoundaryLoop& loop : adj.boundary_loops) {
     if (!loop.closed) continue;
     for (const auto& [r, edges] : cycles_of(loop)) {
-      if (r.size() < 3 || r.size() > 4) continue;
+      if (r.size() < 3 || r.size() > kMaxHoleVertices) continue;
       std::set<PatchId> patches;
       Index first_face = kInvalid;
-      for (Index e : edges) {
-        const Index f = adj.edges[e].first_slot / 4;
+      double perimeter = 0, local = 0;
+      for (std::size_t i = 0; i < edges.size(); ++i) {
+        const Index f = adj.edges[edges[i]].first_slot / 4;
         patches.insert(m.face_patch[f]);
         first_face = std::min(first_face, f);
+        perimeter += norm(m.positions[r[(i + 1) % r.size()]] - m.positions[r[i]]);
+        const Face& t = m.faces[f];
+        for (int c = 0; c < 3; ++c) {
+          local = std::max(local, norm(m.positions[t[(c + 1) % 3]] - m.positions[t[c]]));
+        }
       }
       if (patches.size() < 2) continue;
+      // Beyond four vertices only holes far smaller than the faces around them: pinholes left
+      // where several short border edges met.
+      if (r.size() > 4 && !(perimeter < local)) continue;
       // The loop follows its faces' winding, so the new faces run against it.
       std::vector<Face> add;
       if (r.size() == 3) {
         add.push_back({r[0], r[2], r[1], kInvalid});
+      } else if (r.size() > 4) {
+        // A pinhole: a fan from its first vertex (its shape is below the mesh's resolution).
+        for (std::size_t i = 1; i + 1 < r.size(); ++i)
+          add.push_back({r[0], r[i + 1], r[i], kInvalid});
       } else if (norm(m.positions[r[0]] - m.positions[r[2]]) <=
                  norm(m.positions[r[1]] - m.positions[r[3]])) {
         add.push_back({r[0], r[2], r[1], kInvalid});

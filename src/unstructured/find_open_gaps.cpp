@@ -10,26 +10,23 @@
 
 namespace hm::merge {
 
-std::vector<OpenGap> find_open_gaps(const Work& w, const MergeOptions& options) {
+std::vector<OpenGap> find_open_gaps(const Work& w, const EdgeAdjacency& adj,
+                                    const MergeOptions& options) {
   const SurfaceMesh& m = w.mesh;
-  const Border b = collect_border(m);
+  const Border b = collect_border(m, adj);
   const std::size_t nb = b.vertices.size();
   std::vector<double> tol(nb);
-  double reach = 0;
-  for (std::size_t i = 0; i < nb; ++i) {
-    tol[i] = vertex_tolerance(options, b.edge_length[i]);
-    reach = std::max(reach, options.gap_report_edges * b.edge_length[i]);
-  }
+  for (std::size_t i = 0; i < nb; ++i) tol[i] = vertex_tolerance(options, b.edge_length[i]);
   struct Near {
     PatchId patch = kInvalid;
     double distance = std::numeric_limits<double>::infinity();
   };
   std::vector<Near> near(nb);
-  const SegmentGrid grid(m.positions, b.edges, reach);
+  const SegmentGrid grid(m.positions, b.edges);
   parallel_for(0, nb, [&](std::size_t i) {
     const Index v = b.vertices[i];
     const PatchId pv = m.vertex_patch[v];
-    grid.for_each_near(m.positions[v], [&](Index e) {
+    grid.for_each_near(m.positions[v], options.gap_report_edges * b.edge_length[i], [&](Index e) {
       const BorderEdge& be = b.edges[e];
       if (be.patch == pv || be.v0 == v || be.v1 == v) return;
       const SegmentPoint sp =

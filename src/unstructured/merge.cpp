@@ -83,9 +83,9 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
     if (filled == 0) break;
   }
   merge::reorder_morton(w);
-  r.open_gaps = merge::find_open_gaps(w, options);
-
   const EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  r.open_gaps = merge::find_open_gaps(w, adj, options);
+
   r.boundary_loops = adj.boundary_loops.size();
   r.nonmanifold_edges = adj.nonmanifold_edges.size();
   r.inconsistent_edges = adj.inconsistent_edges.size();

@@ -11,7 +11,10 @@
 namespace hm::merge {
 
 Border collect_border(const SurfaceMesh& mesh) {
-  const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, mesh.vertex_count());
+  return collect_border(mesh, build_edge_adjacency(mesh.faces, mesh.vertex_count()));
+}
+
+Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj) {
   Border b;
   b.edges.reserve(adj.boundary_edges.size());
   std::vector<double> sum(mesh.vertex_count(), 0.0);
@@ -36,30 +39,41 @@ Border collect_border(const SurfaceMesh& mesh) {
   return b;
 }
 
-SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges,
-                         double reach) {
+SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges) {
   if (edges.empty()) return;
   BBox3d box;
-  double longest = 0;
-  std::vector<Vec3d> mid(edges.size());
+  std::vector<double> length(edges.size());
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const Vec3d &a = positions[edges[i].v0], &b = positions[edges[i].v1];
-    mid[i] = 0.5 * (a + b);
-    box.add(mid[i]);
-    longest = std::max(longest, norm(b - a));
+    box.add(a);
+    box.add(b);
+    length[i] = norm(b - a);
   }
-  // A point within reach of an edge is within (half its length + reach) of its midpoint.
-  size_ = std::max(0.5 * longest + reach, 1e-12 * (1 + box.diagonal()));
-  // Bound the cell count (a few very long edges would otherwise make a huge sparse grid moot;
-  // cells are only keys, so the bound protects the key range, not memory).
+  std::vector<double> sorted = length;
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2),
+                   sorted.end());
   const Vec3d e = box.extent();
   const double most = std::max({e.x, e.y, e.z});
-  if (most / size_ > 1e6) size_ = most / 1e6;
+  size_ = std::max(sorted[sorted.size() / 2], 1e-12 * (1 + most));
+  // At most 2^20 cells along an axis keeps the keys in range for any input.
+  size_ = std::max(size_, most / double(1 << 20));
   lo_ = box.lo;
   for (int a = 0; a < 3; ++a) dims_[a] = std::int64_t(e[a] / size_) + 1;
-  std::vector<std::pair<std::uint64_t, Index>> items(edges.size());
+  // Count -> scan -> scatter would do; a sort of (cell, edge) pairs is simpler and as fast here.
+  std::vector<std::pair<std::uint64_t, Index>> items;
+  items.reserve(edges.size() * 4);
   for (std::size_t i = 0; i < edges.size(); ++i) {
-    items[i] = {key(cell(mid[i].x, 0), cell(mid[i].y, 1), cell(mid[i].z, 2)), Index(i)};
+    const Vec3d &a = positions[edges[i].v0], &b = positions[edges[i].v1];
+    std::int64_t lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = cell(std::min(a[k], b[k]), k);
+      hi[k] = cell(std::max(a[k], b[k]), k);
+    }
+    for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x) items.push_back({key(x, y, z), Index(i)});
+      }
+    }
   }
   std::sort(items.begin(), items.end());
   keys_.resize(items.size());
@@ -72,8 +86,8 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
 
 std::int64_t SegmentGrid::cell(double v, int axis) const {
   const double c = std::floor((v - lo_[axis]) / size_);
-  if (!(c >= 0)) return c < 0 ? std::max<std::int64_t>(std::int64_t(c), -2) : -2;
-  return std::min<std::int64_t>(std::int64_t(c), dims_[axis] + 1);
+  if (!(c >= 0)) return c < 0 ? -1 : 0;  // NaN lands in cell 0
+  return std::min<std::int64_t>(std::int64_t(c), dims_[axis]);
 }
 
 std::size_t SegmentGrid::first(std::uint64_t k) const {

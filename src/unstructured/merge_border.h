@@ -2,12 +2,14 @@
 // border edges near a point. Internal to src/unstructured.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "core/types.h"
 #include "core/vec.h"
+#include "mesh/adjacency.h"
 #include "mesh/surface_mesh.h"
 
 namespace hm::merge {
@@ -26,22 +28,28 @@ struct Border {
 
 // Border edges from the faces' edge adjacency (edges used twice or more are not border).
 Border collect_border(const SurfaceMesh& mesh);
+Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
 
-// Border edges binned by midpoint in cubic cells wide enough that every edge within `reach` of a
-// point is in the 27 cells around the point's cell.
+// Border edges binned in a uniform grid of cubic cells about the median edge length; an edge is
+// listed in every cell its bounding box meets, so a query looks only at the cells its own ball
+// meets (a fixed search radius sized for the longest edge would scan far too many).
 class SegmentGrid {
  public:
-  SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges, double reach);
-  // Calls f(edge index) for every edge that may lie within `reach` of p (a superset).
+  SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges);
+  // Calls f(edge index) for every edge that may lie within `radius` of p (a superset; an edge
+  // may come more than once).
   template <class F>
-  void for_each_near(const Vec3d& p, F&& f) const {
+  void for_each_near(const Vec3d& p, double radius, F&& f) const {
     if (order_.empty()) return;
-    const std::int64_t cx = cell(p.x, 0), cy = cell(p.y, 1), cz = cell(p.z, 2);
-    for (std::int64_t dz = -1; dz <= 1; ++dz) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dx = -1; dx <= 1; ++dx) {
-          const std::int64_t x = cx + dx, y = cy + dy, z = cz + dz;
-          if (x < 0 || y < 0 || z < 0 || x >= dims_[0] || y >= dims_[1] || z >= dims_[2]) continue;
+    std::int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max<std::int64_t>(cell(p[a] - radius, a), 0);
+      hi[a] = std::min<std::int64_t>(cell(p[a] + radius, a), dims_[a] - 1);
+      if (lo[a] > hi[a]) return;
+    }
+    for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
           const std::uint64_t k = key(x, y, z);
           for (std::size_t i = first(k); i < order_.size() && keys_[i] == k; ++i) f(order_[i]);
         }

@@ -44,7 +44,8 @@ struct SnapStats {
 SnapStats snap_borders(Work& w, const MergeOptions& options, double length);
 
 // Closes boundary loops of 3 or 4 vertices that run along two or more patches (the holes
-// pairwise zipping leaves where several patch corners meet). Returns the holes filled. The new
+// pairwise zipping leaves where several patch corners meet), and pinholes of up to 16 vertices
+// smaller than the faces around them. Returns the holes filled. The new
 // faces take the provenance of the loop's lowest-numbered face.
 std::size_t fill_small_holes(Work& w);
 
@@ -62,7 +63,8 @@ double enclosed_volume(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
 
 // Border stretches of two patches that stay apart by more than the tolerance but less than
 // options.gap_report_edges local border edges, widest first.
-std::vector<OpenGap> find_open_gaps(const Work& w, const MergeOptions& options);
+std::vector<OpenGap> find_open_gaps(const Work& w, const EdgeAdjacency& adj,
+                                    const MergeOptions& options);
 
 // Reorders vertices and faces in Morton order (faces by centroid), updating the maps.
 void reorder_morton(Work& w);

@@ -18,7 +18,9 @@ void reverse_face(Face& f) { std::swap(f[1], f[2]); }
 
 double det(const Vec3d& a, const Vec3d& b, const Vec3d& c) { return dot(a, cross(b, c)); }
 
-// Signed volume (times 6) of the faces listed, closed over the given loops, about origin o.
+// Signed volume (times 6) of the faces listed, closed over the given boundary loops, about
+// origin o. Each loop is closed by a fan from its centroid; the lid runs against each boundary
+// edge as its face traverses it now (faces may have been turned since the loops were chained).
 double volume6(const SurfaceMesh& m, const EdgeAdjacency& adj, std::span<const Index> faces,
                std::span<const Index> loops, const Vec3d& o) {
   double v = 0;
@@ -27,14 +29,17 @@ double volume6(const SurfaceMesh& m, const EdgeAdjacency& adj, std::span<const I
     v += det(m.positions[t[0]] - o, m.positions[t[1]] - o, m.positions[t[2]] - o);
   }
   for (Index l : loops) {
-    const std::vector<Index>& ring = adj.boundary_loops[l].vertices;
-    if (ring.size() < 3) continue;
+    const BoundaryLoop& loop = adj.boundary_loops[l];
+    if (loop.vertices.size() < 3) continue;
     Vec3d c{};
-    for (Index r : ring) c += m.positions[r];
-    c = c / double(ring.size()) - o;
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Vec3d a = m.positions[ring[i]] - o, b = m.positions[ring[(i + 1) % ring.size()]] - o;
-      v += det(c, b, a);  // the lid runs against the boundary's direction
+    for (Index r : loop.vertices) c += m.positions[r];
+    c = c / double(loop.vertices.size()) - o;
+    for (Index e : loop.edges) {
+      const Index slot = adj.edges[e].first_slot;
+      const Face& t = m.faces[slot / 4];
+      const int k = int(slot % 4);
+      const Vec3d a = m.positions[t[k]] - o, b = m.positions[t[(k + 1) % 3]] - o;
+      v += det(c, b, a);
     }
   }
   return v;
@@ -84,10 +89,15 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w) {
     if (patches[m.face_patch[f]].reversed) reverse_face(m.faces[f]);
   }
 
+  // The adjacency is built once: turning faces changes edge directions, not which faces meet.
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
   // Votes across patch borders: (P, Q) -> edges wound alike minus edges wound opposite.
   {
-    const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
-    std::map<std::pair<PatchId, PatchId>, long> votes;
+    struct Vote {
+      PatchId p, q;
+      int alike;  // +1 wound alike (one of the two is turned), -1 opposite (consistent)
+    };
+    std::vector<Vote> votes;
     for (const MeshEdge& e : adj.edges) {
       if (e.uses != 2) continue;
       const Index f = e.first_slot / 4;
@@ -95,13 +105,22 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w) {
       if (g == kInvalid) continue;
       const PatchId p = m.face_patch[f], q = m.face_patch[g];
       if (p == q) continue;
-      votes[{std::min(p, q), std::max(p, q)}] += e.same_direction ? 1 : -1;
+      votes.push_back({std::min(p, q), std::max(p, q), e.same_direction ? 1 : -1});
     }
+    std::sort(votes.begin(), votes.end(),
+              [](const Vote& a, const Vote& b) { return a.p != b.p ? a.p < b.p : a.q < b.q; });
     std::vector<std::vector<std::pair<PatchId, bool>>> graph(np);  // neighbour, disagrees
-    for (const auto& [pq, v] : votes) {
-      if (v == 0) continue;
-      graph[pq.first].push_back({pq.second, v > 0});
-      graph[pq.second].push_back({pq.first, v > 0});
+    for (std::size_t i = 0; i < votes.size();) {
+      long sum = 0;
+      std::size_t j = i;
+      for (; j < votes.size() && votes[j].p == votes[i].p && votes[j].q == votes[i].q; ++j) {
+        sum += votes[j].alike;
+      }
+      if (sum != 0) {
+        graph[votes[i].p].push_back({votes[i].q, sum > 0});
+        graph[votes[i].q].push_back({votes[i].p, sum > 0});
+      }
+      i = j;
     }
     std::vector<std::size_t> size(np, 0);
     for (PatchId p : m.face_patch) ++size[p];
@@ -132,7 +151,6 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w) {
   }
 
   // Outward: each connected part closed by fans must enclose a positive volume.
-  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
   const std::vector<Index> part = face_parts(m, adj);
   std::map<Index, std::pair<std::vector<Index>, std::vector<Index>>> parts;  // faces, loops
   for (std::size_t f = 0; f < part.size(); ++f) parts[part[f]].first.push_back(Index(f));

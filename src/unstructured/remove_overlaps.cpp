@@ -1,15 +1,17 @@
-// Overlaps: where two patches cover the same stretch of surface, one layer is cut away along the
-// other patch's border, so that snap_borders can stitch the two there.
+// Overlaps: where patches cover the same stretch of surface, the lowest-numbered patch keeps it
+// and the others are cut away along the border of the patches below them, so that
+// snap_borders can stitch them there.
 //
-// collect seeds (border vertices lying inside another patch, checked on the NURBS through the
-// Embree closest-point query) -> select which patch of each overlapping pair is cut -> grow the
-// covered region over the cut patch -> apply: drop covered faces, move the covered corners of
-// straddling faces onto the covering patch's border.
+// collect seeds (border vertices lying on a lower-numbered patch, checked on the NURBS through
+// the Embree closest-point query) -> grow the covered region over each patch -> apply, patch by
+// patch in increasing order: drop covered faces, move the covered corners of straddling faces
+// onto the nearest border edge of the covering patches (as already cut).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
 
+#include "core/bbox.h"
 #include "core/parallel.h"
 #include "mesh/adjacency.h"
 #include "query/hull_query.h"
@@ -26,13 +28,15 @@ struct Cover {
   PatchId by = kInvalid;  // the covering patch, or kInvalid
 };
 
-// The patch (other than the vertex's own) whose surface the vertex lies on, or kInvalid.
+// The lowest-numbered patch below the vertex's own whose surface the vertex lies on, or
+// kInvalid.
 PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
                        Index v, double distance) {
   const PatchId own = m.vertex_patch[v];
+  if (own == 0) return kInvalid;
   // The triangles stray from the surface by up to the chord tolerance: search them wider than
   // the distance asked of the exact surfaces.
-  const ClosestPoint cp = q.closest_point_excluding(m.positions[v], own, 20 * distance);
+  const ClosestPoint cp = q.closest_point_in_range(m.positions[v], 0, own, 20 * distance);
   if (!cp.valid() || !(cp.distance <= distance)) return kInvalid;
   const Vec2d uv = m.vertex_uv[v];
   const Vec3d n = normal(patches[own].surface, uv.x, uv.y);
@@ -46,12 +50,8 @@ PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const
 std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b,
                                    const MergeOptions& options, double floor) {
   std::vector<double> tol(b.vertices.size());
-  double reach = 0;
-  for (std::size_t i = 0; i < tol.size(); ++i) {
-    tol[i] = vertex_tolerance(options, b.edge_length[i]);
-    reach = std::max(reach, tol[i]);
-  }
-  const SegmentGrid grid(m.positions, b.edges, reach);
+  for (std::size_t i = 0; i < tol.size(); ++i) tol[i] = vertex_tolerance(options, b.edge_length[i]);
+  const SegmentGrid grid(m.positions, b.edges);
   std::vector<std::uint8_t> seed(b.vertices.size(), 0);
   parallel_for(0, b.vertices.size(), [&](std::size_t i) {
     const Index v = b.vertices[i];
@@ -59,7 +59,7 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b,
     double best = std::numeric_limits<double>::infinity();
     Index best_edge = kInvalid;
     SegmentPoint best_sp;
-    grid.for_each_near(p, [&](Index e) {
+    grid.for_each_near(p, tol[i], [&](Index e) {
       const BorderEdge& be = b.edges[e];
       if (be.patch == m.vertex_patch[v]) return;
       const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
@@ -94,6 +94,40 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b,
   return out;
 }
 
+// The faces of every patch whose bounding box (grown by `margin`) holds a candidate of a
+// higher-numbered patch; vertices are kept as they are (unused ones are harmless).
+SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
+                       std::size_t patch_count, double margin) {
+  std::vector<BBox3d> box(patch_count);
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) box[m.vertex_patch[v]].add(m.positions[v]);
+  for (BBox3d& b : box) {
+    if (b.empty()) continue;
+    b.lo -= Vec3d{margin, margin, margin};
+    b.hi += Vec3d{margin, margin, margin};
+  }
+  std::vector<std::uint8_t> needed(patch_count, 0);
+  for (Index v : candidates) {
+    const Vec3d& p = m.positions[v];
+    for (std::size_t q = 0; q < m.vertex_patch[v]; ++q) {
+      const BBox3d& b = box[q];
+      if (!needed[q] && p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y &&
+          p.z >= b.lo.z && p.z <= b.hi.z) {
+        needed[q] = 1;
+      }
+    }
+  }
+  SurfaceMesh sub;
+  sub.positions = m.positions;
+  sub.vertex_patch = m.vertex_patch;
+  sub.vertex_uv = m.vertex_uv;
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    if (!needed[m.face_patch[f]]) continue;
+    sub.faces.push_back(m.faces[f]);
+    sub.face_patch.push_back(m.face_patch[f]);
+  }
+  return sub;
+}
+
 }  // namespace
 
 OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const MergeOptions& options,
@@ -105,25 +139,19 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
   // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
   const std::vector<Index> candidates = seed_candidates(m, b, options, distance);
   if (candidates.empty()) return stats;
-  const HullQuery query(patches, m);
+  // The query needs only the patches that may cover a candidate: lower-numbered ones whose
+  // box holds it. Building a BVH over the whole hull would cost more than the merge itself.
+  const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance);
+  if (near.faces.empty()) return stats;
+  const HullQuery query(patches, near);
   std::vector<PatchId> seed_cover(candidates.size(), kInvalid);
   parallel_for(0, candidates.size(), [&](std::size_t i) {
     seed_cover[i] = covering_patch(query, patches, m, candidates[i], distance);
   });
   if (progress.cancelled()) return stats;
 
-  // Select: of two patches that cover each other, cut the higher-numbered one.
-  std::set<std::pair<PatchId, PatchId>> covers;  // (covered, by)
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (seed_cover[i] != kInvalid) covers.insert({m.vertex_patch[candidates[i]], seed_cover[i]});
-  }
-  if (covers.empty()) return stats;
-  const auto cut = [&](PatchId covered, PatchId by) {
-    return covers.count({covered, by}) && (covered > by || !covers.count({by, covered}));
-  };
-
-  // Grow the covered region of each cut patch from its seeds across its own edges (serial
-  // breadth-first walk in seed order; each vertex is checked once).
+  // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
+  // ring by ring: each ring is checked in parallel and committed in order).
   std::vector<std::vector<Index>> ring(m.vertex_count());
   for (const Face& f : m.faces) {
     for (int c = 0; c < 3; ++c) ring[f[c]].push_back(f[(c + 1) % 3]);
@@ -134,13 +162,13 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const Index v = candidates[i];
     checked[v] = 1;
-    if (seed_cover[i] != kInvalid && cut(m.vertex_patch[v], seed_cover[i])) {
+    if (seed_cover[i] != kInvalid) {
       cover[v] = seed_cover[i];
       frontier.push_back(v);
     }
   }
+  if (frontier.empty()) return stats;
   while (!frontier.empty()) {
-    // Evaluate the next ring in parallel, commit in order.
     std::vector<Index> next;
     for (Index v : frontier) {
       for (Index u : ring[v]) {
@@ -156,78 +184,133 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
     });
     frontier.clear();
     for (std::size_t i = 0; i < next.size(); ++i) {
-      if (found[i] != kInvalid && cut(m.vertex_patch[next[i]], found[i])) {
-        cover[next[i]] = found[i];
-        frontier.push_back(next[i]);
-      }
+      if (found[i] == kInvalid) continue;
+      cover[next[i]] = found[i];
+      frontier.push_back(next[i]);
     }
     if (progress.cancelled()) return stats;
   }
 
-  // Apply: faces with every corner covered go; covered corners of the others move onto the
-  // covering patch's border (its nearest border edge).
-  std::vector<std::uint8_t> keep(m.face_count(), 1);
-  std::vector<std::uint8_t> straddles(m.face_count(), 0);
-  double before = 0;
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
-    const Face& t = m.faces[f];
-    const int covered =
-        (cover[t[0]] != kInvalid) + (cover[t[1]] != kInvalid) + (cover[t[2]] != kInvalid);
-    if (covered == 0) continue;
-    const double area = face_area(m.positions, t);
-    if (covered == 3) {
-      keep[f] = 0;
-      ++stats.triangles;
-      stats.area += area;
-    } else {
-      straddles[f] = 1;
-      before += area;
+  // A covered vertex that no fully covered face holds lies on a covered sliver one edge wide;
+  // moving it would fold the faces on its two sides over each other. It stays, and snapping
+  // handles the sliver.
+  {
+    std::vector<std::uint8_t> in_removed(m.vertex_count(), 0);
+    for (const Face& t : m.faces) {
+      if (cover[t[0]] != kInvalid && cover[t[1]] != kInvalid && cover[t[2]] != kInvalid) {
+        for (int c = 0; c < 3; ++c) in_removed[t[c]] = 1;
+      }
+    }
+    for (std::size_t v = 0; v < cover.size(); ++v) {
+      if (!in_removed[v]) cover[v] = kInvalid;
     }
   }
-  // Only corners of kept faces need a place; the others vanish with their faces.
-  std::vector<std::uint8_t> on_kept(m.vertex_count(), 0);
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
-    if (!straddles[f]) continue;
-    for (int c = 0; c < 3; ++c) on_kept[m.faces[f][c]] = 1;
-  }
-  std::vector<Index> moved;
-  for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-    if (cover[v] != kInvalid && on_kept[v]) moved.push_back(Index(v));
-  }
-  std::vector<Vec3d> target(moved.size());
-  std::set<PatchId> covering;
-  for (const auto& [covered, by] : covers) covering.insert(by);
-  std::vector<BorderEdge> edges_by;  // border edges of the covering patches
-  double longest = 0;
+
+  // Border neighbours of each border vertex (along its own patch's border).
+  std::vector<std::vector<Index>> border_next(m.vertex_count());
   for (const BorderEdge& e : b.edges) {
-    if (!covering.count(e.patch)) continue;
-    edges_by.push_back(e);
-    longest = std::max(longest, norm(m.positions[e.v1] - m.positions[e.v0]));
+    border_next[e.v0].push_back(e.v1);
+    border_next[e.v1].push_back(e.v0);
   }
-  // A straddling corner lies within about one edge of the covering border.
-  const SegmentGrid grid(m.positions, edges_by, 2 * longest);
-  parallel_for(0, moved.size(), [&](std::size_t i) {
-    const Index v = moved[i];
-    const Vec3d& p = m.positions[v];
-    double best = std::numeric_limits<double>::infinity();
-    target[i] = p;
-    Index best_edge = kInvalid;
-    grid.for_each_near(p, [&](Index e) {
-      const BorderEdge& be = edges_by[e];
-      if (be.patch != cover[v]) return;
-      const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
-      if (sp.distance < best || (sp.distance == best && e < best_edge)) {
-        best = sp.distance;
-        best_edge = e;
-        target[i] = m.positions[be.v0] + sp.t * (m.positions[be.v1] - m.positions[be.v0]);
+
+  // Apply, patch by patch upwards: a patch is cut against the patches below it as they are
+  // after their own cuts.
+  std::vector<std::vector<Index>> faces_of(patches.size());
+  for (std::size_t f = 0; f < m.face_count(); ++f) faces_of[m.face_patch[f]].push_back(Index(f));
+  std::vector<std::uint8_t> keep(m.face_count(), 1);
+  for (std::size_t p = 1; p < patches.size(); ++p) {
+    std::set<PatchId> by;
+    for (Index f : faces_of[p]) {
+      for (int c = 0; c < 3; ++c) {
+        if (cover[m.faces[f][c]] != kInvalid) by.insert(cover[m.faces[f][c]]);
+      }
+    }
+    if (by.empty()) continue;
+    // Faces with every corner covered go; covered corners of the others move.
+    double before = 0;
+    std::vector<Index> straddling;
+    for (Index f : faces_of[p]) {
+      const Face& t = m.faces[f];
+      const int covered =
+          (cover[t[0]] != kInvalid) + (cover[t[1]] != kInvalid) + (cover[t[2]] != kInvalid);
+      if (covered == 0) continue;
+      const double area = face_area(m.positions, t);
+      if (covered == 3) {
+        keep[f] = 0;
+        ++stats.triangles;
+        stats.area += area;
+      } else {
+        straddling.push_back(f);
+        before += area;
+      }
+    }
+    std::vector<Index> moved;
+    for (Index f : straddling) {
+      for (int c = 0; c < 3; ++c) {
+        if (cover[m.faces[f][c]] != kInvalid) moved.push_back(m.faces[f][c]);
+      }
+    }
+    std::sort(moved.begin(), moved.end());
+    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    // Each moved corner goes to where its edges towards uncovered corners leave the covered
+    // region (bisection on the exact surfaces of the patches below), the nearest such point:
+    // that is the cut along the covering patches' border.
+    // A corner on the patch's border (the hull's outline, say) leaves along that border, so
+    // that the outline keeps its place.
+    std::vector<std::vector<Index>> out_to(moved.size());
+    for (Index f : straddling) {
+      const Face& t = m.faces[f];
+      for (int c = 0; c < 3; ++c) {
+        if (cover[t[c]] == kInvalid) continue;
+        const std::size_t i =
+            std::size_t(std::lower_bound(moved.begin(), moved.end(), t[c]) - moved.begin());
+        for (int d = 1; d < 3; ++d) {
+          const Index u = t[(c + d) % 3];
+          if (cover[u] == kInvalid) out_to[i].push_back(u);
+        }
+      }
+    }
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      const auto& along = border_next[moved[i]];
+      std::vector<Index> on_border;
+      for (Index u : out_to[i]) {
+        if (std::find(along.begin(), along.end(), u) != along.end()) on_border.push_back(u);
+      }
+      if (!along.empty() && !on_border.empty()) out_to[i] = std::move(on_border);
+    }
+    const auto on_lower = [&](const Vec3d& x) {
+      // The chord of an edge strays from the surface by up to the tessellation tolerance.
+      const ClosestPoint cp = query.closest_point_in_range(x, 0, PatchId(p), 20 * distance);
+      return cp.valid() && cp.distance <= 3 * distance;
+    };
+    std::vector<Vec3d> target(moved.size());
+    parallel_for(0, moved.size(), [&](std::size_t i) {
+      const Vec3d from = m.positions[moved[i]];
+      double best = std::numeric_limits<double>::infinity();
+      target[i] = from;
+      for (Index u : out_to[i]) {
+        const Vec3d to = m.positions[u];
+        double lo = 0, hi = 1;  // covered at lo, not at hi
+        for (int it = 0; it < 40 && (hi - lo) * norm(to - from) > 1e-3 * distance; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (on_lower(from + mid * (to - from)) ? lo : hi) = mid;
+        }
+        const Vec3d exit = from + lo * (to - from);
+        const double d = norm(exit - from);
+        if (d < best) {
+          best = d;
+          target[i] = exit;
+        }
       }
     });
-  });
-  for (std::size_t i = 0; i < moved.size(); ++i) m.positions[moved[i]] = target[i];
-  double after = 0;
+    for (std::size_t i = 0; i < moved.size(); ++i) m.positions[moved[i]] = target[i];
+    double after = 0;
+    for (Index f : straddling) after += face_area(m.positions, m.faces[f]);
+    stats.area += before - after;
+  }
+
   std::size_t kept = 0;
   for (std::size_t f = 0; f < m.face_count(); ++f) {
-    if (straddles[f]) after += face_area(m.positions, m.faces[f]);
     if (!keep[f]) continue;
     m.faces[kept] = m.faces[f];
     m.face_patch[kept] = m.face_patch[f];
@@ -237,7 +320,6 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
   m.faces.resize(kept);
   m.face_patch.resize(kept);
   w.face_old.resize(kept);
-  stats.area += before - after;
   return stats;
 }
 

@@ -52,9 +52,9 @@ std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
 // Per border vertex: the nearest border edge of another patch within its tolerance.
 std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::span<const double> tol,
                                  std::span<const Vec3d> inward) {
-  double reach = 0;
-  for (double t : tol) reach = std::max(reach, t);
-  const SegmentGrid grid(m.positions, b.edges, reach);
+  const SegmentGrid grid(m.positions, b.edges);
+  std::vector<Vec3d> edge_in(b.edges.size());
+  parallel_for(0, b.edges.size(), [&](std::size_t e) { edge_in[e] = edge_inward(m, b.edges[e]); });
   std::vector<Split> out(b.vertices.size());
   parallel_for(0, b.vertices.size(), [&](std::size_t i) {
     const Index v = b.vertices[i];
@@ -62,10 +62,10 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
     const PatchId pv = m.vertex_patch[v];
     Split best;
     best.distance = std::numeric_limits<double>::infinity();
-    grid.for_each_near(p, [&](Index e) {
+    grid.for_each_near(p, tol[i], [&](Index e) {
       const BorderEdge& be = b.edges[e];
       if (be.patch == pv || be.v0 == v || be.v1 == v) return;
-      if (dot(edge_inward(m, be), inward[i]) > kFoldCos) return;
+      if (dot(edge_in[e], inward[i]) > kFoldCos) return;
       const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
       if (sp.distance < best.distance || (sp.distance == best.distance && e < best.edge)) {
         best = {e, sp.t, sp.distance};
