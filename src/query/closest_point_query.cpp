@@ -174,7 +174,7 @@ ClosestPoint HullQuery::closest_point(const Vec3d& q) const {
 }
 
 ClosestPoint HullQuery::closest_point_in_range(const Vec3d& q, PatchId first, PatchId last,
-                                              double reach) const {
+                                               double reach) const {
   const Impl& m = *impl_;
   ClosestPoint best;
   if (!is_finite(q)) return best;
