@@ -59,13 +59,17 @@ struct CollapsedSides {
     return 0;
   }
   bool any() const { return u0 || u1 || v0 || v1; }
+  // The ends of edge (a, b) as chord sampling sees them: an end on a collapsed side takes the free
+  // parameter of the other end.
+  void edge_ends(Vec2d& a, Vec2d& b) const {
+    if (!any()) return;
+    const int ka = on(a), kb = on(b);
+    if (ka && !kb) (ka == 1 ? a.y : a.x) = (ka == 1 ? b.y : b.x);
+    if (kb && !ka) (kb == 1 ? b.y : b.x) = (kb == 1 ? a.y : a.x);
+  }
   // The middle of edge (a, b) in (u, v) for chord sampling.
   Vec2d edge_middle(Vec2d a, Vec2d b) const {
-    if (any()) {
-      const int ka = on(a), kb = on(b);
-      if (ka && !kb) (ka == 1 ? a.y : a.x) = (ka == 1 ? b.y : b.x);
-      if (kb && !ka) (kb == 1 ? b.y : b.x) = (kb == 1 ? a.y : a.x);
-    }
+    edge_ends(a, b);
     return 0.5 * (a + b);
   }
   // The centroid of a triangle in (u, v) for chord sampling.

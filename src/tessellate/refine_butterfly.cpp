@@ -68,6 +68,39 @@ struct EdgeTable {
 // Signed double area of (a, b, c) in (u, v).
 double orient(const Vec2d& a, const Vec2d& b, const Vec2d& c) { return cross(b - a, c - a); }
 
+// Borders of the pieces of one direction inside which the surface is smooth, sorted: the domain
+// ends and every interior knot of multiplicity >= degree (the surface is only C0 there: a
+// knuckle, which the initial grid always follows with a grid line).
+std::vector<double> c0_breaks(const std::vector<double>& knots, int degree, double lo, double hi) {
+  std::vector<double> out{lo};
+  for (std::size_t k = 0; k < knots.size(); ++k) {
+    const double t = knots[k];
+    if (t <= lo || t >= hi || (k > 0 && knots[k - 1] == t)) continue;
+    if (std::count(knots.begin(), knots.end(), t) >= degree) out.push_back(t);
+  }
+  out.push_back(hi);
+  return out;
+}
+
+bool is_break(const std::vector<double>& breaks, double t) {
+  return std::binary_search(breaks.begin(), breaks.end(), t);
+}
+
+// The parameter box a new vertex is projected in (u0..u1 x v0..v1 of one C0 piece).
+struct Box {
+  double u0, u1, v0, v1;
+};
+
+// The piece [lo, hi] between consecutive breaks that holds the middle of (a, b), when it holds
+// both ends too; else (an edge across a knuckle, which a trimmed patch's triangulation may make)
+// the whole range.
+std::pair<double, double> piece_of(const std::vector<double>& breaks, double a, double b) {
+  const auto it = std::upper_bound(breaks.begin() + 1, breaks.end() - 1, 0.5 * (a + b));
+  const double lo = *(it - 1), hi = *it;
+  if (std::min(a, b) < lo || std::max(a, b) > hi) return {breaks.front(), breaks.back()};
+  return {lo, hi};
+}
+
 struct NewMid {
   Index a, b;    // edge ends
   Index corner;  // creating triangle's half-edge
@@ -75,7 +108,12 @@ struct NewMid {
 
 class Refiner {
  public:
-  Refiner(const NurbsSurface& s, PatchMesh& m, const RefineOptions& o) : s_(s), m_(m), o_(o) {
+  Refiner(const NurbsSurface& s, PatchMesh& m, const RefineOptions& o)
+      : s_(s),
+        m_(m),
+        o_(o),
+        breaks_u_(c0_breaks(s.knots_u, s.degree_u, s.u0, s.u1)),
+        breaks_v_(c0_breaks(s.knots_v, s.degree_v, s.v0, s.v1)) {
     level_.assign(m.tri_count(), 0);
     fresh_.assign(m.tri_count(), 1);
     parent_edge_.assign(m.vertex_count(), kNoEdge);
@@ -136,6 +174,7 @@ class Refiner {
   const NurbsSurface& s_;
   PatchMesh& m_;
   RefineOptions o_;
+  std::vector<double> breaks_u_, breaks_v_;  // C0 piece borders (see c0_breaks)
   RefineStats stats_;
   std::vector<std::uint8_t> level_, fresh_;
   std::vector<std::uint64_t> parent_edge_;  // per vertex: the edge it is the midpoint of
@@ -281,9 +320,12 @@ void Refiner::place_midpoints(const std::vector<NewMid>& mids, Index first_id) {
 }
 
 // Gauss-Newton projection of q onto the surface near `start` (first derivatives only: q is within
-// about a chord error of the surface, so a few steps converge). Stops when the step is below
-// `resolution` parameter units; returns false when a step is not finite.
-bool project_local(const NurbsSurface& s, const Vec3d& q, Vec2d& w, double resolution) {
+// about a chord error of the surface, so a few steps converge), clamped to `box`: one C0 piece,
+// since across a knuckle the derivatives jump and the closest point may lie on the wrong face.
+// Stops when a (clamped) move is below `resolution` parameter units; returns false when a step is
+// not finite.
+bool project_local(const NurbsSurface& s, const Box& box, const Vec3d& q, Vec2d& w,
+                   double resolution) {
   for (int it = 0; it < kProjectionSteps; ++it) {
     const SurfaceDerivs d = evaluate_derivs(s, w.x, w.y, 1);
     const Vec3d r = q - d.p;
@@ -293,14 +335,17 @@ bool project_local(const NurbsSurface& s, const Vec3d& q, Vec2d& w, double resol
     if (!(det > 0)) return false;
     const Vec2d step{(gu * c - gv * b) / det, (gv * a - gu * b) / det};
     if (!std::isfinite(step.x) || !std::isfinite(step.y)) return false;
-    w = {std::clamp(w.x + step.x, s.u0, s.u1), std::clamp(w.y + step.y, s.v0, s.v1)};
-    if (std::abs(step.x) + std::abs(step.y) <= resolution) return true;
+    const Vec2d next{std::clamp(w.x + step.x, box.u0, box.u1),
+                     std::clamp(w.y + step.y, box.v0, box.v1)};
+    const Vec2d moved = next - w;
+    w = next;
+    if (std::abs(moved.x) + std::abs(moved.y) <= resolution) return true;
   }
   return true;
 }
 
-// The same along the iso-line of a domain side (fixed u when fixed_u, else fixed v).
-bool project_on_iso(const NurbsSurface& s, bool fixed_u, const Vec3d& q, Vec2d& w,
+// The same along an iso-line (fixed u when fixed_u, else fixed v): a domain side or a knuckle.
+bool project_on_iso(const NurbsSurface& s, const Box& box, bool fixed_u, const Vec3d& q, Vec2d& w,
                     double resolution) {
   for (int it = 0; it < kProjectionSteps; ++it) {
     const SurfaceDerivs d = evaluate_derivs(s, w.x, w.y, 1);
@@ -309,11 +354,12 @@ bool project_on_iso(const NurbsSurface& s, bool fixed_u, const Vec3d& q, Vec2d& 
     if (!(h > 0)) return false;
     const double step = dot(q - d.p, dt) / h;
     if (!std::isfinite(step)) return false;
-    if (fixed_u)
-      w.y = std::clamp(w.y + step, s.v0, s.v1);
-    else
-      w.x = std::clamp(w.x + step, s.u0, s.u1);
-    if (std::abs(step) <= resolution) return true;
+    double& t = fixed_u ? w.y : w.x;
+    const double next =
+        fixed_u ? std::clamp(t + step, box.v0, box.v1) : std::clamp(t + step, box.u0, box.u1);
+    const double moved = next - t;
+    t = next;
+    if (std::abs(moved) <= resolution) return true;
   }
   return true;
 }
@@ -323,20 +369,30 @@ void Refiner::place_one(const VertexRings& rings, const std::vector<std::uint8_t
   const Index t = nm.corner / 3, i = nm.corner % 3;
   const Vec2d wa = m_.tri_uv[t][i], wb = m_.tri_uv[t][(i + 1) % 3];
   const Vec2d wc = m_.tri_uv[t][(i + 2) % 3];
-  const Vec2d start = o_.collapsed.edge_middle(wa, wb);
+  Vec2d ea = wa, eb = wb;
+  o_.collapsed.edge_ends(ea, eb);
+  const Vec2d start = 0.5 * (ea + eb);  // edge_middle
+  // The new vertex stays in the C0 piece of its edge: across a knuckle the surface turns away.
+  const auto [pu0, pu1] = piece_of(breaks_u_, ea.x, eb.x);
+  const auto [pv0, pv1] = piece_of(breaks_v_, ea.y, eb.y);
+  const Box box{pu0, pu1, pv0, pv1};
   const Index e = table_.edge_of_corner[nm.corner];
   const Index count = table_.size(e);
-  const bool fixed_u = wa.x == wb.x && (wa.x == s_.u0 || wa.x == s_.u1);
-  const bool fixed_v = wa.y == wb.y && (wa.y == s_.v0 || wa.y == s_.v1);
+  const bool side_u = wa.x == wb.x && (wa.x == s_.u0 || wa.x == s_.u1);
+  const bool side_v = wa.y == wb.y && (wa.y == s_.v0 || wa.y == s_.v1);
+  // An interior edge along a knuckle keeps its midpoint exactly on the knot line.
+  const bool knot_u = count == 2 && wa.x == wb.x && is_break(breaks_u_, wa.x);
+  const bool knot_v = count == 2 && wa.y == wb.y && is_break(breaks_v_, wa.y);
   std::uint8_t flags = 0;
   Vec2d w = start;
-  if (fixed_u || fixed_v) {
-    // A domain side (or a seam): the new point slides along that side only.
-    flags = kOnDomainSide | kSideMidpoint;
+  if (side_u || side_v || knot_u || knot_v) {
+    // A domain side (or a seam) or a knuckle: the new point slides along that line only.
+    const bool fixed_u = side_u || (!side_v && knot_u);
+    if (side_u || side_v) flags = kOnDomainSide | kSideMidpoint;
     const Vec3d q = butterfly_midpoint(rings, m_.xyz, boundary, nm.a, nm.b, count == 1, o_.tension);
     Vec2d p = start;
     const double ta = fixed_u ? wa.y : wa.x, tb = fixed_u ? wb.y : wb.x;
-    if (project_on_iso(s_, fixed_u, q, p, kResolution * std::abs(tb - ta))) {
+    if (project_on_iso(s_, box, fixed_u, q, p, kResolution * std::abs(tb - ta))) {
       const double f = ((fixed_u ? p.y : p.x) - ta) / (tb - ta);
       if (std::isfinite(f) && std::abs(f - 0.5) <= kMaxSlideAlong) w = p;
     }
@@ -350,7 +406,7 @@ void Refiner::place_one(const VertexRings& rings, const std::vector<std::uint8_t
       const Vec2d wd = m_.tri_uv[t2][(i2 + 2) % 3];
       const Vec3d q = butterfly_midpoint(rings, m_.xyz, boundary, nm.a, nm.b, false, o_.tension);
       Vec2d p = start;
-      const bool ok = project_local(s_, q, p, kResolution * norm(wb - wa));
+      const bool ok = project_local(s_, box, q, p, kResolution * norm(wb - wa));
       // Keep the point well inside the union of the two triangles, so no child inverts.
       const double along = dot(p - wa, wb - wa) / dot(wb - wa, wb - wa);
       const double side_c = orient(wa, wb, p) / orient(wa, wb, wc);
