@@ -55,8 +55,10 @@ std::vector<Index> morton_order(std::span<const Vec3d> points) {
   morton_codes(points, box, codes);
   std::vector<Index> new2old(points.size());
   std::iota(new2old.begin(), new2old.end(), Index{0});
-  std::sort(new2old.begin(), new2old.end(),
-            [&](Index a, Index b) { return codes[a] != codes[b] ? codes[a] < codes[b] : a < b; });
+  // Ties broken by index: a strict total order, so the parallel sort is deterministic.
+  parallel_sort(new2old.begin(), new2old.end(), [&](Index a, Index b) {
+    return codes[a] != codes[b] ? codes[a] < codes[b] : a < b;
+  });
   return new2old;
 }
 

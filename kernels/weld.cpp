@@ -49,46 +49,53 @@ std::vector<ClosePair> find_close_pairs(std::span<const Vec3d> points,
       0, n, [&](std::size_t i) { key[i] = cell_key(cell_of(points[i])); }, 1024);
   std::vector<Index> order(n);
   std::iota(order.begin(), order.end(), Index{0});
-  std::sort(order.begin(), order.end(),
-            [&](Index a, Index b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  parallel_sort(order.begin(), order.end(),
+                [&](Index a, Index b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
   std::vector<std::uint64_t> sorted_key(n);
   for (std::size_t i = 0; i < n; ++i) sorted_key[i] = key[order[i]];
 
-  // Each point lists its partners with a larger index (evaluate in parallel, own slot), then the
-  // lists are concatenated in point order (count -> scan -> scatter).
-  std::vector<std::vector<ClosePair>> found(n);
+  // Partners of point i with a larger index, in ascending order, passed to emit. The three cells
+  // x - 1, x, x + 1 of a row are consecutive keys, so each of the 9 rows is one range.
+  const auto for_partners = [&](std::size_t i, auto&& emit) {
+    const Cell c = cell_of(points[i]);
+    std::vector<Index> found;
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        const std::uint64_t k0 = cell_key({c[0] - 1, c[1] + dy, c[2] + dz});
+        const std::uint64_t k1 = cell_key({c[0] + 1, c[1] + dy, c[2] + dz});
+        auto it = std::lower_bound(sorted_key.begin(), sorted_key.end(), k0);
+        for (; it != sorted_key.end() && *it <= k1; ++it) {
+          const Index j = order[std::size_t(it - sorted_key.begin())];
+          if (j <= i) continue;
+          if (!group.empty() && group[i] == group[j]) continue;
+          if (norm(points[j] - points[i]) < tolerance) found.push_back(j);
+        }
+      }
+    }
+    std::sort(found.begin(), found.end());
+    for (Index j : found) emit(j);
+  };
+
+  // Count -> exclusive scan -> scatter: each point writes its own range. (Most points have no
+  // partner, so the small vector above rarely allocates.)
+  std::vector<std::size_t> offset(n + 1, 0);
   parallel_for(
       0, n,
       [&](std::size_t i) {
-        const Cell c = cell_of(points[i]);
-        for (int dz = -1; dz <= 1; ++dz) {
-          for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-              const std::uint64_t k = cell_key({c[0] + dx, c[1] + dy, c[2] + dz});
-              auto it = std::lower_bound(sorted_key.begin(), sorted_key.end(), k);
-              for (; it != sorted_key.end() && *it == k; ++it) {
-                const Index j = order[std::size_t(it - sorted_key.begin())];
-                if (j <= i) continue;
-                if (!group.empty() && group[i] == group[j]) continue;
-                const double d = norm(points[j] - points[i]);
-                if (d < tolerance) found[i].push_back({Index(i), j, d});
-              }
-            }
-          }
-        }
-        std::sort(found[i].begin(), found[i].end(),
-                  [](const ClosePair& x, const ClosePair& y) { return x.b < y.b; });
+        std::size_t k = 0;
+        for_partners(i, [&](Index) { ++k; });
+        offset[i + 1] = k;
       },
       256);
-  std::vector<std::size_t> offset(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) offset[i + 1] = offset[i] + found[i].size();
+  for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
   std::vector<ClosePair> pairs(offset[n]);
   parallel_for(
       0, n,
       [&](std::size_t i) {
-        std::copy(found[i].begin(), found[i].end(), pairs.begin() + std::ptrdiff_t(offset[i]));
+        std::size_t k = offset[i];
+        for_partners(i, [&](Index j) { pairs[k++] = {Index(i), j, norm(points[j] - points[i])}; });
       },
-      1024);
+      256);
   return pairs;
 }
 

@@ -39,7 +39,8 @@ Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj) {
   return b;
 }
 
-SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges) {
+SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges,
+                         double min_cell) {
   if (edges.empty()) return;
   BBox3d box;
   std::vector<double> length(edges.size());
@@ -54,7 +55,7 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
                    sorted.end());
   const Vec3d e = box.extent();
   const double most = std::max({e.x, e.y, e.z});
-  size_ = std::max(sorted[sorted.size() / 2], 1e-12 * (1 + most));
+  size_ = std::max({sorted[sorted.size() / 2], min_cell, 1e-12 * (1 + most)});
   // At most 2^20 cells along an axis keeps the keys in range for any input.
   size_ = std::max(size_, most / double(1 << 20));
   lo_ = box.lo;

@@ -35,7 +35,9 @@ Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
 // meets (a fixed search radius sized for the longest edge would scan far too many).
 class SegmentGrid {
  public:
-  SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges);
+  // Cells are at least `min_cell` wide (for zero-length "edges": points).
+  SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges,
+              double min_cell = 0);
   // Calls f(edge index) for every edge that may lie within `radius` of p (a superset; an edge
   // may come more than once).
   template <class F>
@@ -46,6 +48,13 @@ class SegmentGrid {
       lo[a] = std::max<std::int64_t>(cell(p[a] - radius, a), 0);
       hi[a] = std::min<std::int64_t>(cell(p[a] + radius, a), dims_[a] - 1);
       if (lo[a] > hi[a]) return;
+    }
+    // A ball much wider than the cells: every entry is cheaper than every cell.
+    const double cells =
+        double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
+    if (cells > double(order_.size())) {
+      for (Index e : order_) f(e);
+      return;
     }
     for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {

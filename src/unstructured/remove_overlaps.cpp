@@ -94,10 +94,12 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b,
   return out;
 }
 
-// The faces of every patch whose bounding box (grown by `margin`) holds a candidate of a
-// higher-numbered patch; vertices are kept as they are (unused ones are harmless).
+// The faces that may cover a candidate: of patches numbered below the candidate's whose
+// bounding box (grown by `margin`) holds it; with `close_only`, further only the faces whose
+// centroid lies within their longest edge plus `margin` of a candidate. Vertices are kept as
+// they are (unused ones are harmless).
 SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
-                       std::size_t patch_count, double margin) {
+                       std::size_t patch_count, double margin, bool close_only) {
   std::vector<BBox3d> box(patch_count);
   for (std::size_t v = 0; v < m.vertex_count(); ++v) box[m.vertex_patch[v]].add(m.positions[v]);
   for (BBox3d& b : box) {
@@ -106,8 +108,10 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
     b.hi += Vec3d{margin, margin, margin};
   }
   std::vector<std::uint8_t> needed(patch_count, 0);
+  PatchId highest = 0;
   for (Index v : candidates) {
     const Vec3d& p = m.positions[v];
+    highest = std::max(highest, m.vertex_patch[v]);
     for (std::size_t q = 0; q < m.vertex_patch[v]; ++q) {
       const BBox3d& b = box[q];
       if (!needed[q] && p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y &&
@@ -116,12 +120,43 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
       }
     }
   }
+  std::vector<std::uint8_t> keep(m.face_count(), 0);
+  parallel_for(0, m.face_count(), [&](std::size_t f) { keep[f] = needed[m.face_patch[f]]; });
+  if (close_only) {
+    // Candidates as zero-length segments in the segment grid: "near a point" is then a query.
+    std::vector<BorderEdge> points(candidates.size());
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      points[i] = {candidates[i], candidates[i], kInvalid, m.vertex_patch[candidates[i]]};
+    }
+    double longest = 0;
+    for (const Face& t : m.faces) {
+      for (int k = 0; k < 3; ++k) {
+        longest = std::max(longest, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
+      }
+    }
+    const SegmentGrid grid(m.positions, points, longest + margin);
+    parallel_for(0, m.face_count(), [&](std::size_t f) {
+      if (!keep[f]) return;
+      const Face& t = m.faces[f];
+      const Vec3d c = face_centroid(m.positions, t);
+      double edge = 0;
+      for (int k = 0; k < 3; ++k) {
+        edge = std::max(edge, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
+      }
+      const double r = edge + margin;
+      bool close = false;
+      grid.for_each_near(c, r, [&](Index i) {
+        close |= points[i].patch > m.face_patch[f] && norm(m.positions[points[i].v0] - c) <= r;
+      });
+      keep[f] = close;
+    });
+  }
   SurfaceMesh sub;
   sub.positions = m.positions;
   sub.vertex_patch = m.vertex_patch;
   sub.vertex_uv = m.vertex_uv;
   for (std::size_t f = 0; f < m.face_count(); ++f) {
-    if (!needed[m.face_patch[f]]) continue;
+    if (!keep[f]) continue;
     sub.faces.push_back(m.faces[f]);
     sub.face_patch.push_back(m.face_patch[f]);
   }
@@ -139,16 +174,23 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
   // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
   const std::vector<Index> candidates = seed_candidates(m, b, options, distance);
   if (candidates.empty()) return stats;
-  // The query needs only the patches that may cover a candidate: lower-numbered ones whose
-  // box holds it. Building a BVH over the whole hull would cost more than the merge itself.
-  const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance);
-  if (near.faces.empty()) return stats;
-  const HullQuery query(patches, near);
+  // The seeds need only the faces around them; building a BVH over the whole hull would cost
+  // more than the merge itself. Only when a seed is covered is a query over every patch that
+  // may cover a candidate built, for growing the covered regions and cutting them.
   std::vector<PatchId> seed_cover(candidates.size(), kInvalid);
-  parallel_for(0, candidates.size(), [&](std::size_t i) {
-    seed_cover[i] = covering_patch(query, patches, m, candidates[i], distance);
-  });
+  {
+    const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance, true);
+    if (near.faces.empty()) return stats;
+    const HullQuery seed_query(patches, near);
+    parallel_for(0, candidates.size(), [&](std::size_t i) {
+      seed_cover[i] = covering_patch(seed_query, patches, m, candidates[i], distance);
+    });
+  }
   if (progress.cancelled()) return stats;
+  if (std::all_of(seed_cover.begin(), seed_cover.end(), [](PatchId p) { return p == kInvalid; })) {
+    return stats;
+  }
+  const HullQuery query(patches, faces_near(m, candidates, patches.size(), 20 * distance, false));
 
   // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
   // ring by ring: each ring is checked in parallel and committed in order).
@@ -167,7 +209,6 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
       frontier.push_back(v);
     }
   }
-  if (frontier.empty()) return stats;
   while (!frontier.empty()) {
     std::vector<Index> next;
     for (Index v : frontier) {
