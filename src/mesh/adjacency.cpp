@@ -29,38 +29,37 @@ std::array<Index, 2> directed(std::span<const Face> faces, Index slot) {
 // exclusive scan -> scatter in slot order), then an insertion sort inside each vertex's bucket,
 // which holds only that vertex's few edges. Linear, and the same for any thread count.
 std::vector<EdgeKey> collect_keys(std::span<const Face> faces, std::size_t vertex_count) {
+  // Calls f(a, b, slot) for every corner's edge a -> b (callers skip a == b: a collapsed corner
+  // has no edge).
+  const auto for_each_edge = [&](auto&& f) {
+    for (std::size_t fi = 0; fi < faces.size(); ++fi) {
+      const Face& face = faces[fi];
+      const int n = corner_count(face);
+      for (int c = 0; c < n; ++c) {
+        const Index a = face[c], b = face[(c + 1) % n];
+        f(a, b, static_cast<Index>(4 * fi + c));
+      }
+    }
+  };
   std::vector<Index> count(vertex_count + 1, 0);
   std::size_t total = 0;
-  for (std::size_t fi = 0; fi < faces.size(); ++fi) {
-    const Face& f = faces[fi];
-    const int n = corner_count(f);
-    for (int c = 0; c < n; ++c) {
-      const Index a = f[c];
-      const Index b = f[(c + 1) % n];
-      if (a >= vertex_count || b >= vertex_count) {
-        throw GeometryError("face " + std::to_string(fi) + " names vertex " +
-                            std::to_string(std::max(a, b)) + " of a mesh with " +
-                            std::to_string(vertex_count) + " vertices");
-      }
-      if (a == b) continue;  // a collapsed corner has no edge
-      ++count[std::min(a, b) + 1];
-      ++total;
+  for_each_edge([&](Index a, Index b, Index slot) {
+    if (a >= vertex_count || b >= vertex_count) {
+      throw GeometryError("face " + std::to_string(slot / 4) + " names vertex " +
+                          std::to_string(std::max(a, b)) + " of a mesh with " +
+                          std::to_string(vertex_count) + " vertices");
     }
-  }
+    if (a == b) return;
+    ++count[std::min(a, b) + 1];
+    ++total;
+  });
   for (std::size_t v = 0; v < vertex_count; ++v) count[v + 1] += count[v];
   std::vector<EdgeKey> keys(total);
   std::vector<Index> next(count.begin(), count.end() - 1);
-  for (std::size_t fi = 0; fi < faces.size(); ++fi) {
-    const Face& f = faces[fi];
-    const int n = corner_count(f);
-    for (int c = 0; c < n; ++c) {
-      const Index a = f[c];
-      const Index b = f[(c + 1) % n];
-      if (a == b) continue;
-      keys[next[std::min(a, b)]++] = {pack(std::min(a, b), std::max(a, b)),
-                                      static_cast<Index>(4 * fi + c)};
-    }
-  }
+  for_each_edge([&](Index a, Index b, Index slot) {
+    if (a == b) return;
+    keys[next[std::min(a, b)]++] = {pack(std::min(a, b), std::max(a, b)), slot};
+  });
   parallel_for(
       0, vertex_count,
       [&](std::size_t v) {

@@ -148,17 +148,22 @@ PatchCandidates patches_near(const Impl& m, const Vec3d& q_model, double extra) 
 
 }  // namespace query
 
-ClosestPoint HullQuery::closest_point(const Vec3d& q) const {
-  const Impl& m = *impl_;
+namespace query {
+namespace {
+
+// The nearest point on the NURBS among the candidates that `take` accepts, each refined from its
+// triangle's (u, v).
+template <class Take>
+ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const PatchCandidates& near,
+                            Take&& take) {
   ClosestPoint best;
-  if (!is_finite(q)) return best;
-  const query::PatchCandidates near = query::patches_near(m, q, 0.0);
   best.distance = std::numeric_limits<double>::infinity();
   for (int i = 0; i < near.count; ++i) {
-    const query::PatchCandidate& c = near.items[i];
+    const PatchCandidate& c = near.items[i];
+    if (!take(c)) continue;
     const NurbsSurface& surface = m.patches[c.patch].surface;
     const SurfaceProjection proj = hm::closest_point(surface, q, c.uv.x, c.uv.y);
-    const Vec2d uv = query::polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});
+    const Vec2d uv = polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});
     const Vec3d point = evaluate(surface, uv.x, uv.y);
     const double d = norm(q - point);
     if (!(d < best.distance)) continue;
@@ -173,31 +178,22 @@ ClosestPoint HullQuery::closest_point(const Vec3d& q) const {
   return best;
 }
 
+}  // namespace
+}  // namespace query
+
+ClosestPoint HullQuery::closest_point(const Vec3d& q) const {
+  if (!is_finite(q)) return {};
+  return query::refine_nearest(*impl_, q, query::patches_near(*impl_, q, 0.0),
+                               [](const query::PatchCandidate&) { return true; });
+}
+
 ClosestPoint HullQuery::closest_point_in_range(const Vec3d& q, PatchId first, PatchId last,
                                                double reach) const {
-  const Impl& m = *impl_;
-  ClosestPoint best;
-  if (!is_finite(q)) return best;
-  const query::PatchCandidates near = query::patches_near(m, q, std::max(reach, 0.0));
-  best.distance = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < near.count; ++i) {
-    const query::PatchCandidate& c = near.items[i];
-    if (c.patch < first || c.patch >= last || !(c.distance <= reach)) continue;
-    const NurbsSurface& surface = m.patches[c.patch].surface;
-    const SurfaceProjection proj = hm::closest_point(surface, q, c.uv.x, c.uv.y);
-    const Vec2d uv = query::polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});
-    const Vec3d point = evaluate(surface, uv.x, uv.y);
-    const double d = norm(q - point);
-    if (!(d < best.distance)) continue;
-    best.patch = c.patch;
-    best.face = m.tri_face[c.triangle];
-    best.uv = uv;
-    best.point = point;
-    best.distance = d;
-    best.on_surface = true;
-  }
-  if (best.valid()) best.normal = m.oriented_normal(best.patch, best.uv);
-  return best;
+  if (!is_finite(q)) return {};
+  return query::refine_nearest(*impl_, q, query::patches_near(*impl_, q, std::max(reach, 0.0)),
+                               [&](const query::PatchCandidate& c) {
+                                 return c.patch >= first && c.patch < last && c.distance <= reach;
+                               });
 }
 
 void HullQuery::closest_points(std::span<const Vec3d> queries, std::span<ClosestPoint> out) const {

@@ -19,6 +19,9 @@ struct Work {
   std::vector<Index> vert_old;  // per vertex
 };
 
+// Keeps the faces with keep[f] != 0 (in order), with their patches and input triangles.
+void compact_faces(Work& w, std::span<const std::uint8_t> keep);
+
 // Per-vertex gap tolerance: options.gap_tolerance, or half the local border edge length.
 double vertex_tolerance(const MergeOptions& options, double border_edge_length);
 

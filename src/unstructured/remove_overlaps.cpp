@@ -350,17 +350,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
     stats.area += before - after;
   }
 
-  std::size_t kept = 0;
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
-    if (!keep[f]) continue;
-    m.faces[kept] = m.faces[f];
-    m.face_patch[kept] = m.face_patch[f];
-    w.face_old[kept] = w.face_old[f];
-    ++kept;
-  }
-  m.faces.resize(kept);
-  m.face_patch.resize(kept);
-  w.face_old.resize(kept);
+  compact_faces(w, keep);
   return stats;
 }
 
