@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "nurbs/evaluate_grid.h"
+#include "nurbs/generate_hull.h"
 #include "nurbs/nurbs_surface.h"
 
 namespace {
@@ -94,6 +95,20 @@ BENCHMARK(BM_PatchLadder)
     ->Arg(10)
     ->Arg(100)
     ->Arg(1000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Generating a full hull of 1 to 1000 exact patches (the test-hull generator's speed).
+void BM_GenerateHull(benchmark::State& state) {
+  hm::HullSpec spec;
+  spec.kind = static_cast<hm::HullKind>(state.range(1));
+  spec.patches = static_cast<int>(state.range(0));
+  spec.full_hull = spec.patches > 1;
+  for (auto _ : state) benchmark::DoNotOptimize(hm::generate_hull(spec));
+}
+BENCHMARK(BM_GenerateHull)
+    ->ArgNames({"patches", "kind"})
+    ->ArgsProduct({{1, 100, 1000}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -2,7 +2,6 @@
 // bounding boxes in metres, no error diagnostics, and parse speed.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdio>
 
 #include "iges/read_iges.h"
@@ -80,19 +79,17 @@ TEST(SharedHulls, WigleyIsUntrimmedAndMatchesItsFormula) {
   EXPECT_NEAR(r.bbox.hi.x, 1.25, 1e-9);
 }
 
-TEST(SharedHulls, Ship449ParsesQuickly) {
+// Parsing speed is measured by bench_iges; here, that repeated parses agree.
+TEST(SharedHulls, Ship449ParsesTheSameEveryTime) {
   HM_REQUIRE_SHARED_HULL(path, "ship_449_patches.iges");
-  double best = 1e9;
-  for (int k = 0; k < 3; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const ImportResult r = read_iges_file(path.string());
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    best = std::min(best, s);
-    ASSERT_EQ(r.patches.size(), 449u);
+  const ImportResult first = read_iges_file(path.string());
+  ASSERT_EQ(first.patches.size(), 449u);
+  const ImportResult again = read_iges_file(path.string());
+  ASSERT_EQ(again.patches.size(), 449u);
+  for (std::size_t p = 0; p < 449; ++p) {
+    ASSERT_EQ(first.patches[p].surface.points.size(), again.patches[p].surface.points.size());
+    ASSERT_EQ(first.patches[p].de, again.patches[p].de);
   }
-  std::printf("ship_449_patches.iges: %.1f ms per parse (best of 3)\n", 1e3 * best);
-  // Generous bound for slow CI machines and sanitizer builds; the figure above is what counts.
-  EXPECT_LT(best, 2.0);
 }
 
 }  // namespace

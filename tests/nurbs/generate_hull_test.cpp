@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstring>
 #include <random>
 
@@ -340,17 +339,11 @@ TEST(GenerateHull, IsDeterministic) {
   }
 }
 
-TEST(GenerateHull, ThousandPatchesWellUnderASecond) {
+// The speed of this is bench_nurbs' BM_GenerateHull; here only that 1000 patches come out.
+TEST(GenerateHull, ThousandPatchesOfEveryKind) {
   for (HullKind kind : kKinds) {
-    const auto start = std::chrono::steady_clock::now();
     const GeneratedHull hull = generate_hull(spec_of(kind, 1000, true));
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_EQ(hull.patches.size(), 1000u);
-    RecordProperty(std::string("seconds_") + to_string(kind), std::to_string(seconds));
-#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
-    EXPECT_LT(seconds, 0.5) << to_string(kind);
-#endif
+    EXPECT_EQ(hull.patches.size(), 1000u) << to_string(kind);
   }
 }
 
