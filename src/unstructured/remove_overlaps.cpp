@@ -3,13 +3,12 @@
 // snap_borders can stitch them there.
 //
 // collect seeds (border vertices lying on a lower-numbered patch, checked on the NURBS through
-// the Embree closest-point query) -> grow the covered region over each patch -> apply, patch by
-// patch in increasing order: drop covered faces, move the covered corners of straddling faces
-// onto the nearest border edge of the covering patches (as already cut).
+// the Embree closest-point query) -> grow the covered region over each patch -> apply: drop
+// covered faces, and move each covered corner of a straddling face to where its edges leave the
+// patches below (bisection on their exact surfaces).
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 
 #include "core/bbox.h"
 #include "core/parallel.h"
@@ -23,10 +22,6 @@ namespace {
 
 // Normals of coincident layers agree to this (either orientation: patches may arrive flipped).
 constexpr double kMinNormalCos = 0.866;  // 30 degrees
-
-struct Cover {
-  PatchId by = kInvalid;  // the covering patch, or kInvalid
-};
 
 // The lowest-numbered patch below the vertex's own whose surface the vertex lies on, or
 // kInvalid.
@@ -254,19 +249,13 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
     border_next[e.v1].push_back(e.v0);
   }
 
-  // Apply, patch by patch upwards: a patch is cut against the patches below it as they are
-  // after their own cuts.
+  // Apply, patch by patch: covered faces go, and covered corners of straddling faces move to
+  // where their edges leave the patches below (tested on the exact surfaces, which cuts do not
+  // change, so the order of the patches does not matter).
   std::vector<std::vector<Index>> faces_of(patches.size());
   for (std::size_t f = 0; f < m.face_count(); ++f) faces_of[m.face_patch[f]].push_back(Index(f));
   std::vector<std::uint8_t> keep(m.face_count(), 1);
   for (std::size_t p = 1; p < patches.size(); ++p) {
-    std::set<PatchId> by;
-    for (Index f : faces_of[p]) {
-      for (int c = 0; c < 3; ++c) {
-        if (cover[m.faces[f][c]] != kInvalid) by.insert(cover[m.faces[f][c]]);
-      }
-    }
-    if (by.empty()) continue;
     // Faces with every corner covered go; covered corners of the others move.
     double before = 0;
     std::vector<Index> straddling;
