@@ -35,6 +35,7 @@ int run(int argc, char** argv) {
   register_convert(app, global, action);
   register_quality(app, global, action);
   register_merge(app, global, action);
+  register_unstructured(app, global, action);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,55 @@
+#include "kernels/independent_set.h"
+
+#include <atomic>
+#include <bit>
+#include <cmath>
+
+#include "core/parallel.h"
+
+namespace hm::kernel {
+
+std::uint64_t priority_key(double priority, Index index) {
+  // Non-negative floats order like their bit patterns; the low 32 bits break ties toward the
+  // smaller index.
+  const float p = static_cast<float>(std::isfinite(priority) && priority > 0 ? priority : 0.0);
+  const std::uint64_t bits = std::bit_cast<std::uint32_t>(p);
+  return (bits << 32) | (~std::uint64_t{index} & 0xffffffffu);
+}
+
+std::vector<Index> select_independent(std::span<const std::uint64_t> keys,
+                                      std::span<const Index> offsets, std::span<const Index> region,
+                                      std::vector<std::uint64_t>& marks) {
+  const std::size_t n = keys.size();
+  // Every candidate raises the mark of its vertices to its key (atomic max: the final marks do
+  // not depend on the order the writes happen in).
+  parallel_for(0, n, [&](std::size_t i) {
+    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) {
+      std::atomic_ref<std::uint64_t> m(marks[region[k]]);
+      std::uint64_t cur = m.load(std::memory_order_relaxed);
+      while (cur < keys[i] && !m.compare_exchange_weak(cur, keys[i], std::memory_order_relaxed)) {
+      }
+    }
+  });
+  std::vector<std::uint8_t> won(n, 0);
+  parallel_for(0, n, [&](std::size_t i) {
+    bool all = true;
+    for (Index k = offsets[i]; k < offsets[i + 1] && all; ++k) {
+      all = std::atomic_ref<std::uint64_t>(marks[region[k]]).load(std::memory_order_relaxed) ==
+            keys[i];
+    }
+    won[i] = all;
+  });
+  // Clear only what was written; concurrent stores of the same zero are benign under atomic_ref.
+  parallel_for(0, n, [&](std::size_t i) {
+    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) {
+      std::atomic_ref<std::uint64_t>(marks[region[k]]).store(0, std::memory_order_relaxed);
+    }
+  });
+  std::vector<Index> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (won[i]) out.push_back(static_cast<Index>(i));
+  }
+  return out;
+}
+
+}  // namespace hm::kernel

@@ -1,0 +1,227 @@
+// hullmesh unstructured FILE -o panels.gdf --panels 4000: the paper's unstructured path. Import,
+// tessellate fine, merge into one hull, find knuckles and boundaries, coarsen by edge collapse
+// under the weighted quality index, and report the panels against the panel-code rules.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/load_hull.h"
+#include "core/error.h"
+#include "io/write_mesh.h"
+#include "mesh/adjacency.h"
+#include "quality/quality_report.h"
+#include "query/hull_query.h"
+#include "tessellate/tessellate.h"
+#include "unstructured/coarsen.h"
+#include "unstructured/features.h"
+#include "unstructured/measure_deviation.h"
+#include "unstructured/merge.h"
+
+namespace hm::cli {
+namespace {
+
+// Fine triangles per panel when the user does not size the fine mesh: enough for the collapses
+// to choose from and for the witnesses to see the surface, bounded both ways.
+constexpr std::size_t kFinePerPanel = 16;
+constexpr std::size_t kFineMin = 40'000, kFineMax = 2'000'000;
+
+struct UnstructuredCommand {
+  std::string file, output, units;
+  TessellateOptions tessellate;
+  std::size_t triangles = 0;
+  MergeOptions merge;
+  FeatureOptions features;
+  CoarsenOptions coarsen;
+  std::string weights;
+  std::vector<std::string> point_sources, line_sources, box_sources;
+};
+
+std::vector<double> numbers(const std::string& text, std::size_t count, const char* option) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw UsageError(std::string(option) + " " + text + ": '" + item + "' is not a number");
+    }
+    if (!std::isfinite(out.back()))
+      throw UsageError(std::string(option) + " " + text + ": values must be finite");
+  }
+  if (out.size() != count) {
+    throw UsageError(std::string(option) + " " + text + ": expected " + std::to_string(count) +
+                     " comma-separated numbers, got " + std::to_string(out.size()));
+  }
+  return out;
+}
+
+void parse_sources(UnstructuredCommand& c) {
+  for (const std::string& s : c.point_sources) {
+    const auto v = numbers(s, 5, "--source");
+    c.coarsen.sources.push_back({SizeSource::Kind::kPoint, {v[0], v[1], v[2]}, {}, v[3], v[4]});
+  }
+  for (const std::string& s : c.line_sources) {
+    const auto v = numbers(s, 8, "--line-source");
+    c.coarsen.sources.push_back(
+        {SizeSource::Kind::kLine, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]});
+  }
+  for (const std::string& s : c.box_sources) {
+    const auto v = numbers(s, 8, "--box-source");
+    c.coarsen.sources.push_back(
+        {SizeSource::Kind::kBox, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]});
+  }
+  if (!c.weights.empty()) {
+    const auto w = numbers(c.weights, 4, "--weights");
+    c.coarsen.weights = {w[0], w[1], w[2], w[3]};
+  }
+}
+
+int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
+  parse_sources(c);
+  const long long t0 = now_ns();
+  const ImportResult hull = load_hull(c.file, c.units, g.quiet);
+  const double t_import = seconds_since(t0);
+
+  // The fine mesh: sized from the panel target unless the user sized it.
+  TessellateOptions o = c.tessellate;
+  const std::size_t panels = c.coarsen.target_panels > 0 ? c.coarsen.target_panels : 4000;
+  std::size_t fine = c.triangles;
+  if (fine == 0 && o.edge_length <= 0) {
+    fine = std::clamp(kFinePerPanel * panels, kFineMin, kFineMax);
+  }
+  if (fine > 0) o.edge_length = edge_length_for_triangles(hull.patches, fine);
+  const Tessellation t = tessellate(hull.patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(hull.patches, t.mesh, c.merge, silent_progress());
+  const long long t1 = now_ns();
+  const EdgeAdjacency adj = build_edge_adjacency(merged.mesh.faces, merged.mesh.vertex_count());
+  if (!adj.nonmanifold_edges.empty()) {
+    const MeshEdge& e = adj.edges[adj.nonmanifold_edges.front()];
+    const Vec3d p = 0.5 * (merged.mesh.positions[e.v0] + merged.mesh.positions[e.v1]);
+    throw GeometryError(c.file + ": merging left " + std::to_string(adj.nonmanifold_edges.size()) +
+                        " edges with more than two faces (the first near x " + std::to_string(p.x) +
+                        ", y " + std::to_string(p.y) + ", z " + std::to_string(p.z) +
+                        " m); `hullmesh merge` writes the surface for inspection");
+  }
+  const FeatureSet features = find_features(merged.mesh, adj, hull.patches, c.features);
+  const double t_features = seconds_since(t1);
+
+  c.coarsen.fine_chord_error = t.summary.max_chord_error;
+  const CoarsenedMesh panels_mesh =
+      coarsen(hull.patches, merged.mesh, adj, features, c.coarsen, silent_progress());
+  const CoarsenReport& r = panels_mesh.report;
+  const long long t2 = now_ns();
+  const HullQuery query(hull.patches, merged.mesh);
+  const DeviationMeasure dev = measure_deviation(query, panels_mesh.mesh);
+  QualityOptions qo;
+  qo.knuckle_edges = panels_mesh.feature_edges;
+  qo.rules.min_triangle_angle_share = 0;
+  const QualityReport quality = assess_quality(panels_mesh.mesh, qo);
+  const double t_report = seconds_since(t2);
+
+  MeshWriteOptions w;
+  w.info.title = "hullmesh unstructured panels of " + c.file;
+  write_mesh(c.output, panels_mesh.mesh, w);
+
+  if (!g.quiet) {
+    std::printf("%s: %zu panels, %zu vertices (from %zu fine triangles)\n", c.output.c_str(),
+                r.panels, r.vertices, r.input_faces);
+    if (!r.target_reached) {
+      std::printf(
+          "  note: stopped above the panel target: no further collapse keeps the "
+          "panels within the deviation bound and the shape rules\n");
+    }
+    std::printf(
+        "  panel size h %.4g m, size level %.3g; %zu collapses in %zu rounds, %zu flips, "
+        "%zu smoothing moves\n",
+        r.panel_size, r.size_level, r.collapses, r.rounds, r.flips, r.smoothing_moves);
+    std::printf("  refused: %zu by the deviation bound, %zu by the fold / sliver filters\n",
+                r.rejected_deviation, r.rejected_shape);
+    std::printf("  quality index: mean %.3f, min %.3f\n", r.mean_quality, r.min_quality);
+    std::printf("  triangles with all angles >= 30 deg: %.1f%%; min angle %.1f deg\n",
+                100 * quality.triangle_angle_share, quality.min_triangle_angle_deg);
+    std::printf("  panels with every neighbour's area ratio < 2: %.1f%%\n",
+                100 * quality.area_ratio_share);
+    std::printf(
+        "  deviation from the NURBS: max %.3g m at (%.4g, %.4g, %.4g) (bound %.3g m), "
+        "mean %.3g m\n",
+        dev.max, dev.where.x, dev.where.y, dev.where.z, r.max_deviation, dev.mean);
+    std::printf("  topology: %zu boundary loops, %zu non-manifold edges, orientation %s\n",
+                quality.topology.boundary_loops, quality.topology.nonmanifold_edges,
+                quality.topology.orientation_consistent ? "consistent" : "INCONSISTENT");
+    std::printf(
+        "  time: import %.3f s, tessellate %.3f s, merge %.3f s, features %.3f s, "
+        "coarsen %.3f s (setup %.3f, collapse %.3f, improve %.3f), report %.3f s\n",
+        t_import, t.summary.seconds, merged.report.seconds, t_features,
+        r.seconds_setup + r.seconds_collapse + r.seconds_improve, r.seconds_setup,
+        r.seconds_collapse, r.seconds_improve, t_report);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& action) {
+  auto c = std::make_shared<UnstructuredCommand>();
+  CLI::App* cmd =
+      app.add_subcommand("unstructured",
+                         "Panels by edge-collapse coarsening of the merged hull (the paper's "
+                         "unstructured algorithm)");
+  cmd->add_option("file", c->file, "IGES file")->required();
+  cmd->add_option("-o,--output", c->output, "Output mesh (.gdf, .vtu, .stl, .obj, ...)")
+      ->required();
+  cmd->add_option("--panels", c->coarsen.target_panels, "Stop at this many panels (default 4000)")
+      ->check(CLI::Range(std::size_t{4}, std::size_t{10'000'000}));
+  cmd->add_option("--panel-size", c->coarsen.panel_size,
+                  "Panel edge on flat hull away from sources, m (default: from --panels)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--mean-quality", c->coarsen.mean_quality,
+                  "Stop once the mean quality index falls to this level (0..1)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--min-quality", c->coarsen.min_quality,
+                  "Stop once the smallest quality index falls to this level (0..1)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--weights", c->weights,
+                  "w_shape,w_area_ratio,w_curvature,w_sources (default 1,1,1,1)");
+  cmd->add_option("--source", c->point_sources, "Point source x,y,z,radius,size (m); may repeat");
+  cmd->add_option("--line-source", c->line_sources,
+                  "Line source x1,y1,z1,x2,y2,z2,radius,size (m); may repeat");
+  cmd->add_option("--box-source", c->box_sources,
+                  "Box source xmin,ymin,zmin,xmax,ymax,zmax,radius,size (m); may repeat");
+  cmd->add_option("--max-deviation", c->coarsen.max_deviation,
+                  "Largest distance of the panels from the NURBS, m (default 1e-3 L)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--curvature-length", c->coarsen.curvature_length,
+                  "R in h / sqrt(1 + k R), m (default 0.05 L)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--knuckle-angle", c->features.knuckle_angle_deg,
+                  "Dihedral angle in degrees above which an edge may be a knuckle")
+      ->check(CLI::Range(1.0, 179.0));
+  cmd->add_option("--waterline-z", c->features.waterline_z,
+                  "z of a waterline cut: boundary edges on it are waterline");
+  cmd->add_option("--triangles", c->triangles,
+                  "Fine triangles to coarsen from (default 16 per panel, 40k to 2M)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{50'000'000}));
+  cmd->add_option("--edge-length", c->tessellate.edge_length, "Fine tessellation edge, m")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--chord-tol", c->tessellate.chord_tolerance,
+                  "Fine chord tolerance, m (default 1e-4 L)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--improve-passes", c->coarsen.improve_passes,
+                  "Passes of edge flips and smoothing after the collapses (default 4)")
+      ->check(CLI::Range(0, 100));
+  cmd->add_flag("--serial", c->coarsen.serial_reference,
+                "One collapse at a time from a priority queue (the reference)");
+  cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
+      ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
+  cmd->callback(
+      [c, &global, &action] { action = [c, &global] { return run_unstructured(*c, global); }; });
+}
+
+}  // namespace hm::cli

@@ -1,0 +1,159 @@
+// Internal to coarsen: the mutable mesh the collapses work on, and the steps that read and change
+// it. Vertices keep their fine index for life (dead ones are flagged), so a vertex id is stable
+// across rounds; faces likewise. Positions in metres, model frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+#include "core/vec.h"
+#include "kernels/collapse_cost.h"
+#include "unstructured/coarsen.h"
+
+namespace hm::coarsen_detail {
+
+// The panel edge wanted at a point: h(x) = h0 * c(x) * s(x), where
+//   c(x) = (1 + k(x) R)^(-w3 / 2)   curvature factor; k the larger principal curvature of the
+//                                   NURBS (1/m), R the curvature length: area ~ 1 / k for k R >> 1
+//   s(x) = prod_i (size_i / h0)^min(1, w4 phi_i(x))   source factor; phi_i = 1 -
+//   smoothstep(d/radius)
+//                                   with d the distance to source i (0 inside a box)
+// w3 = 0 switches curvature off; w4 = 0 switches the sources off.
+struct SizeField {
+  double h0 = 0;                // m
+  double curvature_length = 0;  // m
+  double w_curvature = 1, w_sources = 1;
+  std::vector<SizeSource> sources;
+
+  double curvature_factor(double kappa) const;
+  double source_factor(const Vec3d& x) const;
+};
+
+// Per fine vertex, the larger absolute principal curvature of its patch at its (u, v), 1/m.
+std::vector<double> vertex_curvatures(std::span<const Patch> patches, const SurfaceMesh& fine);
+
+// h0 such that equilateral panels of the field's sizes would number about `panels` over the
+// fine mesh's area.
+double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> curvature,
+                            SizeField field, std::size_t panels);
+
+enum class Kind : std::uint8_t { kSmooth = 0, kOnLine = 1, kCorner = 2 };
+
+// Where a vertex sits on a fine feature line (for moving it along the line).
+struct LineSpot {
+  Index line = kInvalid;  // into State::lines
+  Index k = kInvalid;     // index into that line's vertices
+};
+
+struct FineLine {
+  std::vector<Index> vertices;
+  std::vector<double> arclength;  // cumulative, from vertices[0]
+  bool closed = false;
+};
+
+struct State {
+  // Read-only inputs.
+  std::span<const Patch> patches;
+  std::span<const Vec3d> fine_positions;
+  std::span<const PatchId> fine_vertex_patch;
+  std::span<const Vec2d> fine_uv;
+  SizeField field;
+  kernel::CollapseWeights weights;
+  double bound = 0;  // m: witnesses must stay this close to their panel
+  double cos_normal_change = 0;
+  std::vector<double> curvature;   // per vertex, 1/m
+  std::vector<double> cfactor;     // per vertex, field.curvature_factor(curvature)
+  std::vector<Vec3d> rest_normal;  // per vertex: mean normal of its fine faces (unit)
+
+  // The mesh. Per vertex (fine numbering).
+  std::vector<Vec3d> position;
+  std::vector<Vec2d> uv;
+  std::vector<PatchId> vpatch;
+  std::vector<Index> source;  // the fine vertex whose place this vertex now holds
+  std::vector<std::uint8_t> alive;
+  std::vector<std::vector<Index>> vertex_faces;  // live faces around each vertex
+  // Per face.
+  std::vector<std::array<Index, 3>> faces;
+  std::vector<PatchId> face_patch;
+  std::vector<std::uint8_t> face_alive;
+  std::size_t live_faces = 0;
+
+  // Features: kind per vertex; for on-line vertices the neighbours along the line (prev, next in
+  // the fine line's order); feature edges joining two corners (sorted pairs).
+  std::vector<Kind> kind;
+  std::vector<std::array<Index, 2>> line_nbr;
+  std::vector<std::array<Index, 2>> corner_edges;
+  std::vector<FineLine> lines;
+  std::vector<LineSpot> spot;  // per vertex
+
+  // Deviation witnesses: fine vertices that collapses removed, each held by the panel it is
+  // nearest to; singly linked lists threaded through witness_next.
+  std::vector<Index> face_witness;       // head per face, kInvalid when none
+  std::vector<Index> witness_next;       // per fine vertex
+  std::vector<std::uint8_t> is_witness;  // per fine vertex: in some face's list
+  double max_witness_distance = 0;       // m, largest accepted
+};
+
+// Builds the state from the fine mesh and its features. Throws GeometryError on a non-manifold
+// or inconsistent input.
+void build_state(std::span<const Patch> patches, const SurfaceMesh& fine,
+                 const EdgeAdjacency& adjacency, const FeatureSet& features, State& s);
+
+bool is_feature_edge(const State& s, Index a, Index b);
+
+// The best collapse of vertex v into one of its neighbours, by the index q. target is kInvalid
+// when no collapse of v is valid.
+struct Candidate {
+  Index target = kInvalid;
+  double q = 0;  // the weighted index
+  double r = 0;  // largest panel edge over the field's edge among the panels it makes
+  std::uint8_t faces_removed = 0;
+};
+Candidate score_vertex(const State& s, Index v);
+// The same checks and index for one given target (kInvalid target when invalid).
+Candidate score_collapse(const State& s, Index v, Index t);
+
+// Outcome of trying one collapse.
+enum class Applied : std::uint8_t { kDone, kRejectedShape, kRejectedDeviation };
+// Re-checks v -> t against the current mesh and the deviation bound, then collapses. Reads and
+// writes only v, t, the vertices around them and their faces: collapses whose regions
+// (collapse_region) are disjoint may run concurrently. Returns the largest witness distance in
+// `deviation`; when the collapse joins two corners by a feature edge, that edge (sorted) in
+// `joined_corners` for the caller to add to corner_edges.
+Applied apply_collapse(State& s, Index v, Index t, double& deviation,
+                       std::array<Index, 2>& joined_corners);
+// The vertices a collapse v -> t reads or writes: v, t and both rings (appended to out).
+void collapse_region(const State& s, Index v, Index t, std::vector<Index>& out);
+
+// Witnesses of the given faces plus `extra` (a fine vertex no longer held by a mesh vertex, or
+// kInvalid; ignored when it is a witness already), assigned to the
+// nearest of `targets` (faces with final corners). False when one lies farther than the bound;
+// nothing is written then. On success the lists of `from` are emptied and `targets` receive
+// them; the largest distance goes to `deviation`.
+bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
+                        std::span<const Index> targets, double& deviation);
+
+// The index on v's fine line of w, v's line neighbour before (or after) it; kInvalid when w is
+// not found on that line. v must be on a line.
+Index line_index(const State& s, Index v, Index w, bool before);
+// True when every fine line vertex strictly between indices ka and kb (going forward, around a
+// closed line) lies within the bound of the segment [pa, pb]: the panels' edge along a knuckle
+// or boundary stays on it, which the witnesses (nearest panel, either side) cannot tell.
+bool line_chord_ok(const State& s, Index line, Index ka, Index kb, const Vec3d& pa,
+                   const Vec3d& pb);
+
+// Face index of one live face (for the stop rules and the report): the weighted index of its own
+// shape, its area against its edge neighbours', and its size against the field.
+double face_index(const State& s, Index f);
+
+// Edge flips and tangential smoothing on the NURBS and along the feature lines, each move kept
+// only when it improves the panels and respects the bounds.
+struct ImproveCounts {
+  std::size_t flips = 0, moves = 0;
+};
+ImproveCounts improve_panels(State& s, int passes);
+
+}  // namespace hm::coarsen_detail

@@ -1,0 +1,281 @@
+// After the collapses: edge flips (serial, in face order) and tangential smoothing (in parallel
+// over independent sets of vertices). Smooth vertices move toward the area-weighted centre of
+// their panels within the tangent plane and are projected back onto their NURBS patch; vertices
+// on a feature line move along the fine line to halfway (by arc length) between their line
+// neighbours, landing on a fine vertex so that they stay exactly on the knuckle or boundary.
+// Every move is checked like a collapse: no fold, no worse panel, witnesses within the bound.
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "kernels/collapse_cost.h"
+#include "kernels/independent_set.h"
+#include "nurbs/nurbs_surface.h"
+#include "unstructured/coarsen_state.h"
+
+namespace hm::coarsen_detail {
+namespace {
+
+constexpr double kRestNormalCos = 0.5;
+// A flip must raise the worse of its two panels' shapes by this much (no flipping back and forth).
+constexpr double kFlipGain = 0.02;
+// The two panels of a flipped edge may stand at most this far from coplanar (cos 20 degrees).
+constexpr double kFlipCoplanarCos = 0.94;
+
+bool contains(const std::array<Index, 3>& t, Index v) {
+  return t[0] == v || t[1] == v || t[2] == v;
+}
+
+Vec3d tri_cross(const State& s, const std::array<Index, 3>& t) {
+  return cross(s.position[t[1]] - s.position[t[0]], s.position[t[2]] - s.position[t[0]]);
+}
+
+double tri_shape(const State& s, const std::array<Index, 3>& t) {
+  return kernel::triangle_shape(s.position[t[0]], s.position[t[1]], s.position[t[2]]);
+}
+
+// The corner after `a` in face t (its winding).
+Index next_corner(const std::array<Index, 3>& t, Index a) {
+  return t[0] == a ? t[1] : (t[1] == a ? t[2] : t[0]);
+}
+
+bool adjacent(const State& s, Index a, Index b) {
+  for (Index f : s.vertex_faces[a]) {
+    if (contains(s.faces[f], b)) return true;
+  }
+  return false;
+}
+
+// Tries to flip edge a -> b of face f1. Returns true when flipped.
+bool try_flip(State& s, Index f1, Index a, Index b, double& deviation) {
+  if (is_feature_edge(s, a, b)) return false;
+  Index f2 = kInvalid;
+  for (Index g : s.vertex_faces[b]) {
+    if (g != f1 && contains(s.faces[g], a)) {
+      if (f2 != kInvalid) return false;
+      f2 = g;
+    }
+  }
+  if (f2 == kInvalid || next_corner(s.faces[f2], b) != a) return false;
+  const Index c = next_corner(s.faces[f1], b);
+  const Index d = next_corner(s.faces[f2], a);
+  if (c == d || s.vertex_faces[a].size() < 4 || s.vertex_faces[b].size() < 4 || adjacent(s, c, d)) {
+    return false;
+  }
+  const std::array<Index, 3> old1 = s.faces[f1], old2 = s.faces[f2];
+  const std::array<Index, 3> new1{a, d, c}, new2{d, b, c};
+  const double old_min = std::min(tri_shape(s, old1), tri_shape(s, old2));
+  if (std::min(tri_shape(s, new1), tri_shape(s, new2)) < old_min + kFlipGain) return false;
+  const Vec3d n_old = tri_cross(s, old1) + tri_cross(s, old2);
+  const Vec3d m1 = tri_cross(s, new1), m2 = tri_cross(s, new2);
+  const double l1 = norm(m1), l2 = norm(m2), lo = norm(n_old);
+  if (!(l1 > 0 && l2 > 0) || dot(m1, m2) < kFlipCoplanarCos * l1 * l2 ||
+      dot(m1, n_old) < s.cos_normal_change * l1 * lo ||
+      dot(m2, n_old) < s.cos_normal_change * l2 * lo) {
+    return false;
+  }
+  s.faces[f1] = new1;
+  s.faces[f2] = new2;
+  const Index both[2] = {f1, f2};
+  if (!reassign_witnesses(s, both, kInvalid, both, deviation)) {
+    s.faces[f1] = old1;
+    s.faces[f2] = old2;
+    return false;
+  }
+  auto drop = [&](Index v, Index f) {
+    auto& l = s.vertex_faces[v];
+    l.erase(std::find(l.begin(), l.end(), f));
+  };
+  drop(a, f2);
+  drop(b, f1);
+  s.vertex_faces[c].push_back(f2);
+  s.vertex_faces[d].push_back(f1);
+  return true;
+}
+
+std::size_t flip_pass(State& s) {
+  std::size_t flips = 0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (!s.face_alive[f]) continue;
+    for (int e = 0; e < 3; ++e) {
+      const auto t = s.faces[f];
+      double deviation = 0;
+      if (try_flip(s, static_cast<Index>(f), t[e], t[(e + 1) % 3], deviation)) {
+        ++flips;
+        s.max_witness_distance = std::max(s.max_witness_distance, deviation);
+        break;  // the face changed; its other edges come again next pass
+      }
+    }
+  }
+  return flips;
+}
+
+// Where a line vertex should go: the fine line index halfway by arc length between its line
+// neighbours; the current index when it cannot tell (a wrap of a closed line, a corner that is
+// not on this line).
+Index line_target(const State& s, Index v) {
+  const LineSpot sp = s.spot[v];
+  const FineLine& l = s.lines[sp.line];
+  const Index kp = line_index(s, v, s.line_nbr[v][0], true);
+  const Index kn = line_index(s, v, s.line_nbr[v][1], false);
+  if (kp == kInvalid || kn == kInvalid || !(kp < sp.k && sp.k < kn)) return sp.k;
+  const double mid = 0.5 * (l.arclength[kp] + l.arclength[kn]);
+  const auto first = l.arclength.begin() + kp + 1, last = l.arclength.begin() + kn;
+  auto it = std::lower_bound(first, last, mid);
+  Index k = static_cast<Index>(it - l.arclength.begin());
+  if (k >= kn) k = kn - 1;
+  if (k > kp + 1 && mid - l.arclength[k - 1] < l.arclength[k] - mid) --k;
+  return k;
+}
+
+// Moves v when that helps; returns true when moved.
+bool try_move(State& s, Index v, double& deviation) {
+  if (!s.alive[v] || s.kind[v] == Kind::kCorner) return false;
+  const auto& star = s.vertex_faces[v];
+  if (star.empty()) return false;
+  const Vec3d old_p = s.position[v];
+  Vec3d new_p;
+  Vec2d new_uv = s.uv[v];
+  PatchId new_patch = s.vpatch[v];
+  Index new_source = s.source[v];
+  Index new_k = s.spot[v].k;
+  if (s.kind[v] == Kind::kSmooth) {
+    Vec3d centre;
+    double area = 0;
+    for (Index f : star) {
+      const auto& t = s.faces[f];
+      const double a = 0.5 * norm(tri_cross(s, t));
+      centre += a * (s.position[t[0]] + s.position[t[1]] + s.position[t[2]]) / 3.0;
+      area += a;
+    }
+    if (!(area > 0)) return false;
+    centre /= area;
+    const Vec3d n = s.rest_normal[v];
+    const Vec3d step = (centre - old_p) - dot(centre - old_p, n) * n;
+    if (squared_norm(step) < 1e-4 * area / static_cast<double>(star.size())) return false;
+    const Patch& patch = s.patches[s.vpatch[v]];
+    const SurfaceProjection pr = closest_point(patch.surface, old_p + step, s.uv[v].x, s.uv[v].y);
+    if (!pr.converged || !is_finite(pr.point) || pr.distance > norm(step)) return false;
+    new_p = pr.point;
+    new_uv = {pr.u, pr.v};
+  } else {
+    new_k = line_target(s, v);
+    if (new_k == s.spot[v].k) return false;
+    const Index prev = s.line_nbr[v][0], next = s.line_nbr[v][1];
+    const Index line = s.spot[v].line;
+    const Vec3d& p = s.fine_positions[s.lines[line].vertices[new_k]];
+    if (!line_chord_ok(s, line, line_index(s, v, prev, true), new_k, s.position[prev], p) ||
+        !line_chord_ok(s, line, new_k, line_index(s, v, next, false), p, s.position[next])) {
+      return false;
+    }
+    new_source = s.lines[s.spot[v].line].vertices[new_k];
+    new_p = s.fine_positions[new_source];
+    new_uv = s.fine_uv[new_source];
+    new_patch = s.fine_vertex_patch[new_source];
+  }
+  // Check the panels around v at the new place.
+  double old_min = 1, new_min = 1, old_sum = 0, new_sum = 0;
+  thread_local std::vector<Vec3d> old_normal;
+  old_normal.clear();
+  for (Index f : star) {
+    const double q = tri_shape(s, s.faces[f]);
+    old_min = std::min(old_min, q);
+    old_sum += q;
+    old_normal.push_back(tri_cross(s, s.faces[f]));
+  }
+  s.position[v] = new_p;
+  bool ok = true;
+  for (std::size_t i = 0; i < star.size() && ok; ++i) {
+    const auto& t = s.faces[star[i]];
+    const Vec3d m = tri_cross(s, t);
+    const double lm = norm(m);
+    ok = lm > 0 && dot(m, old_normal[i]) >= s.cos_normal_change * lm * norm(old_normal[i]);
+    for (int c = 0; c < 3 && ok; ++c) {
+      if (s.kind[t[c]] == Kind::kSmooth) ok = dot(m, s.rest_normal[t[c]]) >= kRestNormalCos * lm;
+    }
+    const double q = tri_shape(s, t);
+    new_min = std::min(new_min, q);
+    new_sum += q;
+  }
+  ok = ok && (new_min >= old_min || (new_min >= 0.5 && new_sum > old_sum));
+  const Index old_source = s.source[v];
+  const Index extra = new_source != old_source ? old_source : kInvalid;
+  if (!ok || !reassign_witnesses(s, star, extra, star, deviation)) {
+    s.position[v] = old_p;
+    return false;
+  }
+  s.uv[v] = new_uv;
+  s.vpatch[v] = new_patch;
+  s.source[v] = new_source;
+  s.spot[v].k = new_k;
+  return true;
+}
+
+std::size_t smooth_pass(State& s, std::vector<std::uint64_t>& marks) {
+  std::vector<Index> pending;
+  for (std::size_t v = 0; v < s.position.size(); ++v) {
+    if (s.alive[v] && s.kind[v] != Kind::kCorner) pending.push_back(static_cast<Index>(v));
+  }
+  std::size_t moves = 0;
+  std::vector<Index> offsets, region;
+  std::vector<std::uint64_t> keys;
+  while (!pending.empty()) {
+    // Regions: v and its ring. Keys: a fixed hash of v, so that the sets are large (Luby) and
+    // the same for any thread count.
+    offsets.assign(pending.size() + 1, 0);
+    keys.resize(pending.size());
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      const Index v = pending[i];
+      std::uint64_t h = (v + 1) * 0x9E3779B97F4A7C15ull;
+      h ^= h >> 29;
+      keys[i] = kernel::priority_key(static_cast<double>(h & 0xffffff) / 16777216.0, v);
+      offsets[i + 1] = offsets[i] + 1 + 3 * static_cast<Index>(s.vertex_faces[v].size());
+    }
+    region.resize(offsets.back());
+    parallel_for(0, pending.size(), [&](std::size_t i) {
+      const Index v = pending[i];
+      Index k = offsets[i];
+      region[k++] = v;
+      for (Index f : s.vertex_faces[v]) {
+        for (Index w : s.faces[f]) region[k++] = w;
+      }
+    });
+    const std::vector<Index> chosen = kernel::select_independent(keys, offsets, region, marks);
+    std::vector<std::uint8_t> moved(chosen.size(), 0);
+    std::vector<double> deviation(chosen.size(), 0.0);
+    parallel_for(
+        0, chosen.size(),
+        [&](std::size_t i) { moved[i] = try_move(s, pending[chosen[i]], deviation[i]); }, 8);
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      moves += moved[i];
+      s.max_witness_distance = std::max(s.max_witness_distance, deviation[i]);
+    }
+    // Drop the chosen from the pending list (both ascending).
+    std::vector<Index> rest;
+    rest.reserve(pending.size() - chosen.size());
+    std::size_t c = 0;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      if (c < chosen.size() && chosen[c] == i) {
+        ++c;
+      } else {
+        rest.push_back(pending[i]);
+      }
+    }
+    pending.swap(rest);
+  }
+  return moves;
+}
+
+}  // namespace
+
+ImproveCounts improve_panels(State& s, int passes) {
+  ImproveCounts counts;
+  std::vector<std::uint64_t> marks(s.position.size(), 0);
+  for (int p = 0; p < passes; ++p) {
+    counts.flips += flip_pass(s);
+    counts.moves += smooth_pass(s, marks);
+  }
+  return counts;
+}
+
+}  // namespace hm::coarsen_detail

@@ -1,0 +1,113 @@
+// The coarsening kernels: the per-criterion qualities and the independent-set selection.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "kernels/collapse_cost.h"
+#include "kernels/independent_set.h"
+
+namespace hm::kernel {
+namespace {
+
+TEST(CollapseCost, ShapeIsOneForEquilateralAndZeroForDegenerate) {
+  const Vec3d a{0, 0, 0}, b{1, 0, 0}, c{0.5, std::sqrt(3.0) / 2, 0};
+  EXPECT_NEAR(triangle_shape(a, b, c), 1.0, 1e-12);
+  EXPECT_EQ(triangle_shape(a, b, {2, 0, 0}), 0.0);
+  EXPECT_EQ(triangle_shape(a, a, a), 0.0);
+  // Smallest angle 30 degrees, isosceles with two 75s: about 0.76.
+  const double t = 15 * M_PI / 180;
+  EXPECT_NEAR(
+      triangle_shape({0, 0, 0}, {std::cos(t), std::sin(t), 0}, {std::cos(t), -std::sin(t), 0}),
+      0.7637, 1e-3);
+}
+
+TEST(CollapseCost, SizeAndAreaRatioQualities) {
+  EXPECT_EQ(size_quality(0), 1.0);
+  EXPECT_EQ(size_quality(1), 0.5);
+  EXPECT_EQ(size_quality(3), 0.0);
+  const double areas[] = {1, 2, 4};
+  EXPECT_EQ(area_ratio_quality(areas), 0.25);
+  EXPECT_NEAR(equilateral_edge(std::sqrt(3.0) / 4), 1.0, 1e-12);
+  const CollapseQualities q{1, 0.5, 0.5, 0};
+  EXPECT_EQ(weighted_index(q, {}), 0.5);
+  EXPECT_EQ(weighted_index(q, {4, 0, 0, 0}), 1.0);
+}
+
+TEST(CollapseCost, PointTriangleDistanceAgainstSampling) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3d a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)}, c{u(rng), u(rng), u(rng)};
+    const Vec3d p{2 * u(rng), 2 * u(rng), 2 * u(rng)};
+    double best = 1e30;
+    const int n = 200;
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; i + j <= n; ++j) {
+        const double s = double(i) / n, t = double(j) / n;
+        best = std::min(best, squared_norm(p - (a + s * (b - a) + t * (c - a))));
+      }
+    }
+    const double d2 = point_triangle_distance2(p, a, b, c);
+    EXPECT_LE(d2, best + 1e-12);
+    EXPECT_NEAR(std::sqrt(d2), std::sqrt(best), 2e-2);
+  }
+}
+
+TEST(IndependentSet, NoTwoChosenShareAVertexAndTheBestAlwaysWins) {
+  std::mt19937 rng(3);
+  const std::size_t vertices = 5000, candidates = 3000;
+  std::vector<Index> offsets{0}, region;
+  std::vector<std::uint64_t> keys;
+  std::uniform_int_distribution<Index> pick(0, vertices - 1);
+  std::uniform_real_distribution<double> pr(0, 1);
+  for (std::size_t i = 0; i < candidates; ++i) {
+    for (int k = 0; k < 6; ++k) region.push_back(pick(rng));
+    offsets.push_back(static_cast<Index>(region.size()));
+    keys.push_back(priority_key(pr(rng), static_cast<Index>(i)));
+  }
+  std::vector<std::uint64_t> marks(vertices, 0);
+  std::vector<Index> one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = select_independent(keys, offsets, region, marks);
+  }
+  for (std::uint64_t m : marks) ASSERT_EQ(m, 0u);  // handed back cleared
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = select_independent(keys, offsets, region, marks);
+  }
+  EXPECT_EQ(one, two);
+  ASSERT_FALSE(one.empty());
+  std::set<Index> used;
+  for (Index c : one) {
+    std::set<Index> mine(region.begin() + offsets[c], region.begin() + offsets[c + 1]);
+    for (Index v : mine) EXPECT_TRUE(used.insert(v).second) << "vertex " << v << " shared";
+  }
+  const auto best = std::max_element(keys.begin(), keys.end()) - keys.begin();
+  EXPECT_TRUE(std::find(one.begin(), one.end(), Index(best)) != one.end());
+  // Every unchosen candidate lost somewhere to a larger key.
+  for (std::size_t i = 0; i < candidates; ++i) {
+    if (std::find(one.begin(), one.end(), Index(i)) != one.end()) continue;
+    bool beaten = false;
+    for (std::size_t j = 0; j < candidates && !beaten; ++j) {
+      if (keys[j] <= keys[i]) continue;
+      for (Index k = offsets[i]; k < offsets[i + 1] && !beaten; ++k) {
+        for (Index l = offsets[j]; l < offsets[j + 1]; ++l) beaten |= region[k] == region[l];
+      }
+    }
+    EXPECT_TRUE(beaten) << i;
+  }
+}
+
+TEST(IndependentSet, PriorityKeyOrdersByPriorityThenSmallerIndex) {
+  EXPECT_GT(priority_key(0.6, 9), priority_key(0.5, 1));
+  EXPECT_GT(priority_key(0.5, 1), priority_key(0.5, 2));
+  EXPECT_EQ(priority_key(-1, 3), priority_key(0, 3));
+  EXPECT_EQ(priority_key(NAN, 3), priority_key(0, 3));
+}
+
+}  // namespace
+}  // namespace hm::kernel
