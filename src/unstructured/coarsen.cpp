@@ -34,6 +34,12 @@ using namespace coarsen_detail;
 constexpr std::size_t kDefaultPanels = 4000;
 constexpr double kFirstLevel = 0.05;
 constexpr double kLevelStep = 1.15;
+// Witnesses sample the surface at the fine vertices only; the panel can stray a little more
+// between them (at its centre over a curved hull), so they are held to this share of the bound
+// left after the fine mesh's chord error.
+constexpr double kWitnessShare = 0.85;
+// The size gate's edge grows by at most this much per metre along the hull.
+constexpr double kGrading = 0.15;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -154,7 +160,7 @@ struct Run {
       }
       std::size_t live_vertices = 0;
       for (std::uint8_t a : s.alive) live_vertices += a;
-      const std::size_t batch = std::max<std::size_t>(32, live_vertices / 10);
+      const std::size_t batch = std::max<std::size_t>(32, live_vertices / 5);
       if (pool.empty()) {
         if (!any_candidate() || !raise_level()) break;
         continue;
@@ -335,7 +341,7 @@ CoarsenedMesh coarsen(std::span<const Patch> patches, const SurfaceMesh& fine,
                      " m is below twice the fine mesh's chord error (" + std::to_string(chord) +
                      " m); tessellate finer or allow more deviation");
   }
-  s.bound = report.max_deviation - chord;
+  s.bound = kWitnessShare * (report.max_deviation - chord);
   s.cos_normal_change = std::cos(options.max_normal_change_deg * std::numbers::pi / 180);
   s.weights = {options.weights.shape, options.weights.area_ratio, options.weights.curvature,
                options.weights.sources};
@@ -352,6 +358,11 @@ CoarsenedMesh coarsen(std::span<const Patch> patches, const SurfaceMesh& fine,
                                       : calibrate_panel_size(fine, s.curvature, s.field,
                                                              target > 0 ? target : kDefaultPanels);
   report.panel_size = s.field.h0;
+  s.gate_h.resize(s.position.size());
+  parallel_for(0, s.gate_h.size(), [&](std::size_t v) {
+    s.gate_h[v] = s.field.h0 * s.cfactor[v] * s.field.source_factor(s.position[v]);
+  });
+  grade_sizes(s, kGrading, s.gate_h);
 
   Run run{s, options, target, options.panel_size > 0 && target == 0, {}, kFirstLevel, report};
   run.cand.resize(s.position.size());

@@ -25,8 +25,9 @@
 
 namespace hm {
 
-// A user source (size below the field) or sink (above): the panel edge `size` is wanted at the
-// source where the hull is flat; influence falls smoothly to nothing at `radius` from it.
+// A user source (size below the field) or sink (above): the panel edge `size` is wanted within
+// half the radius of the source where the hull is flat; influence falls smoothly to nothing at
+// `radius` from it.
 struct SizeSource {
   enum class Kind : std::uint8_t { kPoint, kLine, kBox };
   Kind kind = Kind::kPoint;

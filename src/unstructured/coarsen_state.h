@@ -18,9 +18,9 @@ namespace hm::coarsen_detail {
 // The panel edge wanted at a point: h(x) = h0 * c(x) * s(x), where
 //   c(x) = (1 + k(x) R)^(-w3 / 2)   curvature factor; k the larger principal curvature of the
 //                                   NURBS (1/m), R the curvature length: area ~ 1 / k for k R >> 1
-//   s(x) = prod_i (size_i / h0)^min(1, w4 phi_i(x))   source factor; phi_i = 1 -
-//   smoothstep(d/radius)
-//                                   with d the distance to source i (0 inside a box)
+//   s(x) = prod_i (size_i / h0)^min(1, w4 phi_i(x))   source factor, where phi_i is 1 within
+//          half the radius of source i, then 1 - smoothstep(2 d / radius - 1) down to 0 at the
+//          radius; d is the distance to the source (0 inside a box)
 // w3 = 0 switches curvature off; w4 = 0 switches the sources off.
 struct SizeField {
   double h0 = 0;                // m
@@ -34,6 +34,11 @@ struct SizeField {
 
 // Per fine vertex, the larger absolute principal curvature of its patch at its (u, v), 1/m.
 std::vector<double> vertex_curvatures(std::span<const Patch> patches, const SurfaceMesh& fine);
+
+struct State;
+// Limits how fast a per-vertex size grows along the mesh's edges: afterwards
+// h[u] <= h[v] + slope |uv| for every edge.
+void grade_sizes(const State& s, double slope, std::vector<double>& h);
 
 // h0 such that equilateral panels of the field's sizes would number about `panels` over the
 // fine mesh's area.
@@ -64,8 +69,11 @@ struct State {
   kernel::CollapseWeights weights;
   double bound = 0;  // m: witnesses must stay this close to their panel
   double cos_normal_change = 0;
-  std::vector<double> curvature;   // per vertex, 1/m
-  std::vector<double> cfactor;     // per vertex, field.curvature_factor(curvature)
+  std::vector<double> curvature;  // per vertex, 1/m
+  std::vector<double> cfactor;    // per vertex, field.curvature_factor(curvature)
+  // Per vertex: the size gate's edge h0 c s, graded so that it grows by at most kGrading per
+  // metre (neighbouring panels then differ little in area even where the field jumps), m.
+  std::vector<double> gate_h;
   std::vector<Vec3d> rest_normal;  // per vertex: mean normal of its fine faces (unit)
 
   // The mesh. Per vertex (fine numbering).

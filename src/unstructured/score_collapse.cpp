@@ -92,20 +92,26 @@ void star_of(const State& s, Index v, Star& st) {
   }
 }
 
-Candidate score_with(const State& s, Index v, Index t, const Star& st) {
+// check_link: test the link condition (scoring leaves it to the final check before applying:
+// it rarely fails, and it is half the cost of a score).
+Candidate score_with(const State& s, Index v, Index t, const Star& st, bool check_link) {
   Candidate out;
   if (!feature_allows(s, v, t)) return out;
   thread_local std::vector<Index> ring_t;
   thread_local std::vector<double> areas;
-  ring_of(s, t, ring_t);
-  // Link condition: v and t share exactly the apexes of the faces on edge v-t, so the collapse
-  // keeps the surface a manifold.
   const auto& star = s.vertex_faces[v];
-  int on_edge = 0, common = 0;
+  int on_edge = 0;
   for (Index f : star) on_edge += contains(s.faces[f], t);
-  for (Index w : st.ring) common += std::find(ring_t.begin(), ring_t.end(), w) != ring_t.end();
-  if (on_edge == 0 || on_edge > 2 || common != on_edge) return out;
+  if (on_edge == 0 || on_edge > 2) return out;
   if (star.size() <= static_cast<std::size_t>(on_edge)) return out;
+  if (check_link) {
+    // Link condition: v and t share exactly the apexes of the faces on edge v-t, so the collapse
+    // keeps the surface a manifold.
+    ring_of(s, t, ring_t);
+    int common = 0;
+    for (Index w : st.ring) common += std::find(ring_t.begin(), ring_t.end(), w) != ring_t.end();
+    if (common != on_edge) return out;
+  }
 
   // The panels v's faces become, checked one by one. The curvature factor falls as the
   // curvature grows, so the panel's is the smallest of its corners' and v's.
@@ -116,11 +122,12 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st) {
     const auto& tri = s.faces[star[i]];
     if (contains(tri, t)) continue;
     Vec3d p[3];
-    double cf = s.cfactor[v];
+    double cf = s.cfactor[v], hg = s.gate_h[v];
     for (int c = 0; c < 3; ++c) {
       const Index w = tri[c] == v ? t : tri[c];
       p[c] = s.position[w];
       cf = std::min(cf, s.cfactor[w]);
+      hg = std::min(hg, s.gate_h[w]);
     }
     const Vec3d n_new = cross(p[1] - p[0], p[2] - p[0]);
     const double len_new = norm(n_new);
@@ -142,7 +149,7 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st) {
     const double hs = s.field.h0 * s.field.source_factor((p[0] + p[1] + p[2]) / 3.0);
     r_curv = std::max(r_curv, l / hc);
     r_src = std::max(r_src, l / hs);
-    r_all = std::max(r_all, l * s.field.h0 / (hc * hs));
+    r_all = std::max(r_all, l / hg);
   }
   if (shape_new < std::min(kSliverShape, st.shape_min)) return out;
   // Neighbouring panels: the rest of t's faces, unchanged by the collapse.
@@ -169,7 +176,7 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st) {
 Candidate score_collapse(const State& s, Index v, Index t) {
   thread_local Star st;
   star_of(s, v, st);
-  return score_with(s, v, t, st);
+  return score_with(s, v, t, st, true);
 }
 
 Candidate score_vertex(const State& s, Index v) {
@@ -185,7 +192,7 @@ Candidate score_vertex(const State& s, Index v) {
   }
   std::sort(targets.begin(), targets.end());  // ties go to the smaller target
   for (Index t : targets) {
-    const Candidate c = score_with(s, v, t, st);
+    const Candidate c = score_with(s, v, t, st, false);
     if (c.target != kInvalid && (best.target == kInvalid || c.q > best.q)) best = c;
   }
   return best;

@@ -2,6 +2,7 @@
 // curvature and the user's sources (the formulas are in coarsen_state.h).
 #include <algorithm>
 #include <cmath>
+#include <queue>
 
 #include "core/parallel.h"
 #include "nurbs/nurbs_surface.h"
@@ -46,8 +47,9 @@ double SizeField::source_factor(const Vec3d& x) const {
   if (w_sources <= 0 || sources.empty()) return 1;
   double log_factor = 0;
   for (const SizeSource& src : sources) {
-    const double t = std::clamp(source_distance(src, x) / src.radius, 0.0, 1.0);
-    const double phi = 1 - t * t * (3 - 2 * t);  // 1 at the source, 0 from the radius on
+    // Full strength within half the radius, then a smoothstep down to nothing at the radius.
+    const double t = std::clamp(2 * source_distance(src, x) / src.radius - 1, 0.0, 1.0);
+    const double phi = 1 - t * t * (3 - 2 * t);
     if (phi > 0) log_factor += std::min(1.0, w_sources * phi) * std::log(src.size / h0);
   }
   return std::exp(log_factor);
@@ -95,6 +97,30 @@ double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> cur
     field.h0 = std::sqrt(weighted / (kEquilateral * static_cast<double>(panels)));
   }
   return field.h0;
+}
+
+void grade_sizes(const State& s, double slope, std::vector<double>& h) {
+  // Dijkstra from the smallest sizes outward: h[u] = min over v (h[v] + slope |uv|), so the
+  // wanted edge grows by at most `slope` per metre along the surface.
+  using Item = std::pair<double, Index>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  for (std::size_t v = 0; v < h.size(); ++v) {
+    if (s.alive[v]) heap.push({h[v], static_cast<Index>(v)});
+  }
+  while (!heap.empty()) {
+    const auto [hv, v] = heap.top();
+    heap.pop();
+    if (hv > h[v]) continue;  // stale
+    for (Index f : s.vertex_faces[v]) {
+      for (Index u : s.faces[f]) {
+        const double cand = hv + slope * norm(s.position[u] - s.position[v]);
+        if (cand < h[u]) {
+          h[u] = cand;
+          heap.push({cand, u});
+        }
+      }
+    }
+  }
 }
 
 }  // namespace hm::coarsen_detail

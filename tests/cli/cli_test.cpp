@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -339,6 +340,42 @@ TEST(CliMerge, MissingFileIsAnInputError) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("nope.igs"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir / "m.vtu"));
+}
+
+TEST(CliUnstructured, ChineHullToGdfPanels) {
+  const fs::path dir = test::scratch_dir("cli_unstructured");
+  const fs::path igs = dir / "chine.igs", gdf = dir / "panels.gdf";
+  ASSERT_EQ(test::run_hullmesh("-q generate chine --patches 8 -o '" + igs.string() + "'").exit_code,
+            0);
+  const auto r = test::run_hullmesh("unstructured '" + igs.string() + "' -o '" + gdf.string() +
+                                    "' --panels 800 --triangles 20000 --weights 1,1,1,1");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  // A collapse on the boundary removes one face, so the count may stop just under the target.
+  const std::regex count(": (79[89]|800) panels,");
+  EXPECT_TRUE(std::regex_search(r.out, count)) << r.out;
+  EXPECT_NE(r.out.find("0 non-manifold edges, orientation consistent"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("triangles with all angles >= 30 deg"), std::string::npos) << r.out;
+  ASSERT_TRUE(fs::exists(gdf));
+  // The panel file reads back with the same count.
+  const auto q = test::run_hullmesh("quality '" + gdf.string() + "'");
+  EXPECT_TRUE(std::regex_search(q.out, std::regex("(79[89]|800) panels"))) << q.out;
+}
+
+TEST(CliUnstructured, BadSourceAndWeightsAreUsageErrors) {
+  const fs::path dir = test::scratch_dir("cli_unstructured_bad");
+  const fs::path igs = dir / "w.igs", out = dir / "p.gdf";
+  ASSERT_EQ(test::run_hullmesh("-q generate wigley -o '" + igs.string() + "'").exit_code, 0);
+  const std::string base = "unstructured '" + igs.string() + "' -o '" + out.string() + "' ";
+  auto r = test::run_hullmesh(base + "--source 1,2,3,4");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("expected 5 comma-separated numbers"), std::string::npos) << r.out;
+  r = test::run_hullmesh(base + "--source 50,5,3,0,1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("radius > 0"), std::string::npos) << r.out;
+  r = test::run_hullmesh(base + "--weights 1,x,1,1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("'x' is not a number"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

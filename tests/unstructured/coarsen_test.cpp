@@ -184,7 +184,8 @@ TEST(Coarsen, BatchedMatchesTheSerialPriorityQueue) {
   o.serial_reference = true;
   const CoarsenedMesh serial = coarsen_of(f, o);
   expect_sound(f, serial, o);
-  EXPECT_EQ(batched.mesh.face_count(), serial.mesh.face_count());
+  // Both stop at the target (a boundary collapse removes one face, so within two of it).
+  EXPECT_NEAR(double(batched.mesh.face_count()), double(serial.mesh.face_count()), 2.0);
   // Batches reorder collapses a little; the panels must be as good.
   EXPECT_GT(mean_shape(batched.mesh), mean_shape(serial.mesh) - 0.02);
   EXPECT_GT(share_angles_30(batched.mesh), share_angles_30(serial.mesh) - 0.03);
@@ -199,7 +200,7 @@ TEST(Coarsen, PointSourceHalvesThePanelsWhereItIsAndNowhereElse) {
   // On the mid-ship side of the Wigley, where curvature hardly sizes the panels.
   const HullQuery q(f.patches, f.merged.mesh);
   const Vec3d p = q.closest_point({50, 5, 3}).point;
-  const double radius = 12;
+  const double radius = 20;
   o.sources.push_back({SizeSource::Kind::kPoint, p, {}, radius, 0.5 * o.panel_size});
   const CoarsenedMesh with = coarsen_of(f, o);
   const double near_ratio =
