@@ -7,6 +7,12 @@
 #include "core/parallel.h"
 
 namespace hm::kernel {
+namespace {
+
+// Each item is a few atomic operations: below this many, one thread is faster than waking more.
+constexpr std::size_t kSerialBelow = 4096;
+
+}  // namespace
 
 std::uint64_t priority_key(double priority, Index index) {
   // Non-negative floats order like their bit patterns; the low 32 bits break ties toward the
@@ -22,29 +28,39 @@ std::vector<Index> select_independent(std::span<const std::uint64_t> keys,
   const std::size_t n = keys.size();
   // Every candidate raises the mark of its vertices to its key (atomic max: the final marks do
   // not depend on the order the writes happen in).
-  parallel_for(0, n, [&](std::size_t i) {
-    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) {
-      std::atomic_ref<std::uint64_t> m(marks[region[k]]);
-      std::uint64_t cur = m.load(std::memory_order_relaxed);
-      while (cur < keys[i] && !m.compare_exchange_weak(cur, keys[i], std::memory_order_relaxed)) {
-      }
-    }
-  });
+  parallel_for(
+      0, n,
+      [&](std::size_t i) {
+        for (Index k = offsets[i]; k < offsets[i + 1]; ++k) {
+          std::atomic_ref<std::uint64_t> m(marks[region[k]]);
+          std::uint64_t cur = m.load(std::memory_order_relaxed);
+          while (cur < keys[i] &&
+                 !m.compare_exchange_weak(cur, keys[i], std::memory_order_relaxed)) {
+          }
+        }
+      },
+      256, kSerialBelow);
   std::vector<std::uint8_t> won(n, 0);
-  parallel_for(0, n, [&](std::size_t i) {
-    bool all = true;
-    for (Index k = offsets[i]; k < offsets[i + 1] && all; ++k) {
-      all = std::atomic_ref<std::uint64_t>(marks[region[k]]).load(std::memory_order_relaxed) ==
-            keys[i];
-    }
-    won[i] = all;
-  });
+  parallel_for(
+      0, n,
+      [&](std::size_t i) {
+        bool all = true;
+        for (Index k = offsets[i]; k < offsets[i + 1] && all; ++k) {
+          all = std::atomic_ref<std::uint64_t>(marks[region[k]]).load(std::memory_order_relaxed) ==
+                keys[i];
+        }
+        won[i] = all;
+      },
+      256, kSerialBelow);
   // Clear only what was written; concurrent stores of the same zero are benign under atomic_ref.
-  parallel_for(0, n, [&](std::size_t i) {
-    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) {
-      std::atomic_ref<std::uint64_t>(marks[region[k]]).store(0, std::memory_order_relaxed);
-    }
-  });
+  parallel_for(
+      0, n,
+      [&](std::size_t i) {
+        for (Index k = offsets[i]; k < offsets[i + 1]; ++k) {
+          std::atomic_ref<std::uint64_t>(marks[region[k]]).store(0, std::memory_order_relaxed);
+        }
+      },
+      256, kSerialBelow);
   std::vector<Index> out;
   for (std::size_t i = 0; i < n; ++i) {
     if (won[i]) out.push_back(static_cast<Index>(i));

@@ -18,10 +18,14 @@ inline constexpr std::size_t kSerialCutoff = 256;
 
 // Calls f(i) for every i in [begin, end). f must write only state owned by index i. An exception
 // thrown by f is carried out of the task and rethrown on the calling thread (first one wins).
+// Loops of fewer than serial_below items run serially: raise it for loops that run many times
+// on light items, where waking the workers costs more than the work (and a host that steals a
+// vCPU turns every wake-up into a wait).
 template <class F>
-void parallel_for(std::size_t begin, std::size_t end, F&& f, std::size_t grain = 64) {
+void parallel_for(std::size_t begin, std::size_t end, F&& f, std::size_t grain = 64,
+                  std::size_t serial_below = kSerialCutoff) {
   if (end <= begin) return;
-  if (end - begin < kSerialCutoff) {
+  if (end - begin < std::max(serial_below, std::size_t{1})) {
     for (std::size_t i = begin; i < end; ++i) f(i);
     return;
   }

@@ -32,6 +32,9 @@ namespace {
 using namespace coarsen_detail;
 
 constexpr std::size_t kDefaultPanels = 4000;
+// The per-round loops (regions, applying, rescoring) run hundreds of times on items of a few
+// microseconds: below this many items one thread does them faster than two.
+constexpr std::size_t kRoundSerialBelow = 4096;
 constexpr double kFirstLevel = 0.05;
 constexpr double kLevelStep = 1.15;
 // Witnesses sample the surface at the fine vertices only; the panel can stray a little more
@@ -82,8 +85,10 @@ struct Run {
   bool target_reached() const { return target > 0 && s.live_faces <= target; }
 
   void rescore(std::span<const Index> vertices) {
-    parallel_for(0, vertices.size(),
-                 [&](std::size_t i) { cand[vertices[i]] = score_vertex(s, vertices[i]); });
+    parallel_for(
+        0, vertices.size(),
+        [&](std::size_t i) { cand[vertices[i]] = score_vertex(s, vertices[i]); }, 64,
+        kRoundSerialBelow);
   }
 
   // The vertices whose candidates a collapse into t may have changed: t and its ring.
@@ -176,17 +181,20 @@ struct Run {
       keys.resize(pool.size());
       offsets.assign(pool.size() + 1, 0);
       std::vector<std::vector<Index>> regions(pool.size());
-      parallel_for(0, pool.size(), [&](std::size_t i) {
-        keys[i] = key_of(pool[i]);
-        collapse_region(s, pool[i], cand[pool[i]].target, regions[i]);
-      });
+      parallel_for(
+          0, pool.size(),
+          [&](std::size_t i) {
+            keys[i] = key_of(pool[i]);
+            collapse_region(s, pool[i], cand[pool[i]].target, regions[i]);
+          },
+          64, kRoundSerialBelow);
       for (std::size_t i = 0; i < pool.size(); ++i) {
         offsets[i + 1] = offsets[i] + static_cast<Index>(regions[i].size());
       }
       region.resize(offsets.back());
-      parallel_for(0, pool.size(), [&](std::size_t i) {
+      for (std::size_t i = 0; i < pool.size(); ++i) {
         std::copy(regions[i].begin(), regions[i].end(), region.begin() + offsets[i]);
-      });
+      }
       std::vector<Index> chosen = kernel::select_independent(keys, offsets, region, marks);
       for (Index& c : chosen) c = pool[c];
       // Best first, and no further than the panel target.
@@ -207,7 +215,7 @@ struct Run {
             result[i] =
                 apply_collapse(s, chosen[i], cand[chosen[i]].target, deviation[i], joined[i]);
           },
-          8);
+          8, kRoundSerialBelow / 4);
       // Commit in a fixed order, then rescore what changed.
       dirty.clear();
       for (std::size_t i = 0; i < chosen.size(); ++i) {
