@@ -58,13 +58,9 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
     MeshWriteOptions w;
     w.info.title = "hullmesh merged surface (non-manifold) of " + c.file;
     write_mesh(c.output, merged.mesh, w);
-    const MeshEdge& e = adj.edges[adj.nonmanifold_edges.front()];
-    const Vec3d p = 0.5 * (merged.mesh.positions[e.v0] + merged.mesh.positions[e.v1]);
-    throw GeometryError(c.file + ": merging left " + std::to_string(adj.nonmanifold_edges.size()) +
-                        " edges with more than two faces (the first near x " + std::to_string(p.x) +
-                        ", y " + std::to_string(p.y) + ", z " + std::to_string(p.z) +
-                        " m); overlapping patches there? The surface is in " + c.output +
-                        " for inspection");
+    check_merged_manifold(
+        c.file, merged.mesh, adj,
+        "overlapping patches there? The surface is in " + c.output + " for inspection");
   }
   const FeatureSet features = find_features(merged.mesh, adj, hull.patches, c.features);
   const double t_features = seconds_since(t1);

@@ -101,14 +101,8 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   const MergedSurface merged = merge_patches(hull.patches, t.mesh, c.merge, silent_progress());
   const long long t1 = now_ns();
   const EdgeAdjacency adj = build_edge_adjacency(merged.mesh.faces, merged.mesh.vertex_count());
-  if (!adj.nonmanifold_edges.empty()) {
-    const MeshEdge& e = adj.edges[adj.nonmanifold_edges.front()];
-    const Vec3d p = 0.5 * (merged.mesh.positions[e.v0] + merged.mesh.positions[e.v1]);
-    throw GeometryError(c.file + ": merging left " + std::to_string(adj.nonmanifold_edges.size()) +
-                        " edges with more than two faces (the first near x " + std::to_string(p.x) +
-                        ", y " + std::to_string(p.y) + ", z " + std::to_string(p.z) +
-                        " m); `hullmesh merge` writes the surface for inspection");
-  }
+  check_merged_manifold(c.file, merged.mesh, adj,
+                        "`hullmesh merge` writes the surface for inspection");
   const FeatureSet features = find_features(merged.mesh, adj, hull.patches, c.features);
   const double t_features = seconds_since(t1);
 

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "core/error.h"
+
 namespace hm::cli {
 
 ImportResult load_hull(const std::string& path, const std::string& units, bool quiet) {
@@ -15,6 +17,17 @@ ImportResult load_hull(const std::string& path, const std::string& units, bool q
         std::fprintf(stderr, "%s: %s\n", path.c_str(), format(d).c_str());
   }
   return r;
+}
+
+void check_merged_manifold(const std::string& file, const SurfaceMesh& mesh,
+                           const EdgeAdjacency& adjacency, const std::string& hint) {
+  if (adjacency.nonmanifold_edges.empty()) return;
+  const MeshEdge& e = adjacency.edges[adjacency.nonmanifold_edges.front()];
+  const Vec3d p = 0.5 * (mesh.positions[e.v0] + mesh.positions[e.v1]);
+  throw GeometryError(file + ": merging left " +
+                      std::to_string(adjacency.nonmanifold_edges.size()) +
+                      " edges with more than two faces (the first near x " + std::to_string(p.x) +
+                      ", y " + std::to_string(p.y) + ", z " + std::to_string(p.z) + " m); " + hint);
 }
 
 long long now_ns() {

@@ -4,12 +4,19 @@
 #include <string>
 
 #include "iges/read_iges.h"
+#include "mesh/adjacency.h"
+#include "mesh/surface_mesh.h"
 
 namespace hm::cli {
 
 // Reads the file (units forced when `units` is not empty) and prints every warning and error
 // diagnostic to stderr unless quiet. Throws what read_iges_file throws.
 ImportResult load_hull(const std::string& path, const std::string& units, bool quiet);
+
+// Throws GeometryError naming how many edges of the merged surface have more than two faces and
+// where the first lies, then `hint` (what the user can do), when there are any.
+void check_merged_manifold(const std::string& file, const SurfaceMesh& mesh,
+                           const EdgeAdjacency& adjacency, const std::string& hint);
 
 // Seconds since `start` (steady clock), for the per-stage timings the commands print.
 double seconds_since(long long start_ns);

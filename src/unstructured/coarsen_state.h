@@ -47,6 +47,14 @@ double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> cur
 
 enum class Kind : std::uint8_t { kSmooth = 0, kOnLine = 1, kCorner = 2 };
 
+// A panel may not stand more than 60 degrees off the hull's normal at a smooth corner (collapses
+// and smoothing moves alike): cos 60.
+inline constexpr double kRestNormalCos = 0.5;
+
+inline bool has_corner(const std::array<Index, 3>& t, Index v) {
+  return t[0] == v || t[1] == v || t[2] == v;
+}
+
 // Where a vertex sits on a fine feature line (for moving it along the line).
 struct LineSpot {
   Index line = kInvalid;  // into State::lines

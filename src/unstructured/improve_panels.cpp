@@ -16,15 +16,10 @@
 namespace hm::coarsen_detail {
 namespace {
 
-constexpr double kRestNormalCos = 0.5;
 // A flip must raise the worse of its two panels' shapes by this much (no flipping back and forth).
 constexpr double kFlipGain = 0.02;
 // The two panels of a flipped edge may stand at most this far from coplanar (cos 20 degrees).
 constexpr double kFlipCoplanarCos = 0.94;
-
-bool contains(const std::array<Index, 3>& t, Index v) {
-  return t[0] == v || t[1] == v || t[2] == v;
-}
 
 Vec3d tri_cross(const State& s, const std::array<Index, 3>& t) {
   return cross(s.position[t[1]] - s.position[t[0]], s.position[t[2]] - s.position[t[0]]);
@@ -41,7 +36,7 @@ Index next_corner(const std::array<Index, 3>& t, Index a) {
 
 bool adjacent(const State& s, Index a, Index b) {
   for (Index f : s.vertex_faces[a]) {
-    if (contains(s.faces[f], b)) return true;
+    if (has_corner(s.faces[f], b)) return true;
   }
   return false;
 }
@@ -51,7 +46,7 @@ bool try_flip(State& s, Index f1, Index a, Index b, double& deviation) {
   if (is_feature_edge(s, a, b)) return false;
   Index f2 = kInvalid;
   for (Index g : s.vertex_faces[b]) {
-    if (g != f1 && contains(s.faces[g], a)) {
+    if (g != f1 && has_corner(s.faces[g], a)) {
       if (f2 != kInvalid) return false;
       f2 = g;
     }

@@ -9,15 +9,9 @@
 namespace hm::coarsen_detail {
 namespace {
 
-// A new panel may not stand more than 60 degrees off the hull's normal at a smooth corner.
-constexpr double kRestNormalCos = 0.5;
 // "No new sliver": a collapse may not make a panel worse than this shape unless the panels it
 // replaces already had one as bad.
 constexpr double kSliverShape = 0.25;
-
-bool contains(const std::array<Index, 3>& t, Index v) {
-  return t[0] == v || t[1] == v || t[2] == v;
-}
 
 // Vertices around v (each once), from its faces.
 void ring_of(const State& s, Index v, std::vector<Index>& out) {
@@ -101,7 +95,7 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   thread_local std::vector<double> areas;
   const auto& star = s.vertex_faces[v];
   int on_edge = 0;
-  for (Index f : star) on_edge += contains(s.faces[f], t);
+  for (Index f : star) on_edge += has_corner(s.faces[f], t);
   if (on_edge == 0 || on_edge > 2) return out;
   if (star.size() <= static_cast<std::size_t>(on_edge)) return out;
   if (check_link) {
@@ -120,7 +114,7 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   areas.clear();
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& tri = s.faces[star[i]];
-    if (contains(tri, t)) continue;
+    if (has_corner(tri, t)) continue;
     Vec3d p[3];
     double cf = s.cfactor[v], hg = s.gate_h[v];
     for (int c = 0; c < 3; ++c) {
@@ -155,7 +149,7 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   // Neighbouring panels: the rest of t's faces, unchanged by the collapse.
   for (Index f : s.vertex_faces[t]) {
     const auto& tri = s.faces[f];
-    if (contains(tri, v)) continue;
+    if (has_corner(tri, v)) continue;
     areas.push_back(0.5 * norm(cross(s.position[tri[1]] - s.position[tri[0]],
                                      s.position[tri[2]] - s.position[tri[0]])));
   }
@@ -222,7 +216,7 @@ Applied apply_collapse(State& s, Index v, Index t, double& deviation,
   removed.clear();
   for (Index f : from) {
     auto& tri = s.faces[f];
-    if (contains(tri, t)) {
+    if (has_corner(tri, t)) {
       removed.push_back(f);
     } else {
       for (Index& w : tri) w = w == v ? t : w;
@@ -230,7 +224,8 @@ Applied apply_collapse(State& s, Index v, Index t, double& deviation,
     }
   }
   for (Index f : s.vertex_faces[t]) {
-    if (!contains(s.faces[f], v) && std::find(targets.begin(), targets.end(), f) == targets.end()) {
+    if (!has_corner(s.faces[f], v) &&
+        std::find(targets.begin(), targets.end(), f) == targets.end()) {
       targets.push_back(f);
     }
   }
@@ -238,7 +233,7 @@ Applied apply_collapse(State& s, Index v, Index t, double& deviation,
   if (!reassign_witnesses(s, from, s.source[v], targets, deviation)) {
     for (Index f : from) {
       auto& tri = s.faces[f];
-      if (!contains(tri, v)) {
+      if (!has_corner(tri, v)) {
         for (Index& w : tri) w = w == t ? v : w;
       }
     }
