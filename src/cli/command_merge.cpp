@@ -44,6 +44,7 @@ std::vector<PolylineRecord> to_records(const SurfaceMesh& m, std::span<const Fea
 }
 
 int run_merge(const MergeCommand& c, const GlobalOptions& g) {
+  check_mesh_output(c.output);
   const long long t0 = now_ns();
   const ImportResult hull = load_hull(c.file, c.units, g.quiet);
   const double t_import = seconds_since(t0);

@@ -85,6 +85,7 @@ void parse_sources(UnstructuredCommand& c) {
 
 int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   parse_sources(c);
+  check_mesh_output(c.output);
   const long long t0 = now_ns();
   const ImportResult hull = load_hull(c.file, c.units, g.quiet);
   const double t_import = seconds_since(t0);

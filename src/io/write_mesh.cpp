@@ -96,6 +96,10 @@ void write_mesh_to(std::ostream& out, const std::string& extension, const Surfac
   f.write(out, mesh, options);
 }
 
+void check_mesh_output(const std::string& path) {
+  io::find_format(io::lower_extension(path), path);
+}
+
 void write_mesh(const std::string& path, const SurfaceMesh& mesh, const MeshWriteOptions& options) {
   const io::FormatEntry& f = io::find_format(io::lower_extension(path), path);
   check_mesh(mesh, options);

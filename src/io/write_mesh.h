@@ -35,6 +35,10 @@ struct MeshFormat {
 // The formats write_mesh and read_mesh know, in the order the help text lists them.
 std::span<const MeshFormat> mesh_formats();
 
+// Throws the UsageError write_mesh would for path's extension, so that a command can refuse an
+// unknown output format before it does any work.
+void check_mesh_output(const std::string& path);
+
 // Writes mesh to path in the format its extension names, atomically. Throws UsageError for an
 // unknown extension (naming the known ones) or a symmetry the format cannot carry,
 // GeometryError for a non-finite position, and IoError when the file cannot be written.

@@ -372,6 +372,12 @@ TEST(CliUnstructured, BadSourceAndWeightsAreUsageErrors) {
   r = test::run_hullmesh(base + "--source 50,5,3,0,1");
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("radius > 0"), std::string::npos) << r.out;
+  // An unknown output format is refused before any meshing.
+  r = test::run_hullmesh("unstructured '" + igs.string() + "' -o '" + (dir / "p.xyz").string() +
+                         "'");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("p.xyz"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("panels,"), std::string::npos) << r.out;
   r = test::run_hullmesh(base + "--weights 1,x,1,1");
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("'x' is not a number"), std::string::npos) << r.out;
