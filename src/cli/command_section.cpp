@@ -43,19 +43,7 @@ std::string number(double v) {
 }
 
 Plane parse_plane(const std::string& text) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw UsageError("--plane '" + text + "': '" + item + "' is not a number");
-    }
-  }
-  if (v.size() != 6) throw UsageError("--plane '" + text + "': expected px,py,pz,nx,ny,nz");
+  const std::vector<double> v = parse_numbers(text, 6, "--plane px,py,pz,nx,ny,nz");
   const Vec3d n{v[3], v[4], v[5]};
   if (!(norm(n) > 0) || !is_finite(n)) throw UsageError("--plane '" + text + "': zero normal");
   return Plane{{v[0], v[1], v[2]}, n};

@@ -40,45 +40,23 @@ struct UnstructuredCommand {
   std::vector<std::string> point_sources, line_sources, box_sources;
 };
 
-std::vector<double> numbers(const std::string& text, std::size_t count, const char* option) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      out.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw UsageError(std::string(option) + " " + text + ": '" + item + "' is not a number");
-    }
-    if (!std::isfinite(out.back()))
-      throw UsageError(std::string(option) + " " + text + ": values must be finite");
-  }
-  if (out.size() != count) {
-    throw UsageError(std::string(option) + " " + text + ": expected " + std::to_string(count) +
-                     " comma-separated numbers, got " + std::to_string(out.size()));
-  }
-  return out;
-}
-
 void parse_sources(UnstructuredCommand& c) {
   for (const std::string& s : c.point_sources) {
-    const auto v = numbers(s, 5, "--source");
+    const auto v = parse_numbers(s, 5, "--source");
     c.coarsen.sources.push_back({SizeSource::Kind::kPoint, {v[0], v[1], v[2]}, {}, v[3], v[4]});
   }
   for (const std::string& s : c.line_sources) {
-    const auto v = numbers(s, 8, "--line-source");
+    const auto v = parse_numbers(s, 8, "--line-source");
     c.coarsen.sources.push_back(
         {SizeSource::Kind::kLine, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]});
   }
   for (const std::string& s : c.box_sources) {
-    const auto v = numbers(s, 8, "--box-source");
+    const auto v = parse_numbers(s, 8, "--box-source");
     c.coarsen.sources.push_back(
         {SizeSource::Kind::kBox, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]});
   }
   if (!c.weights.empty()) {
-    const auto w = numbers(c.weights, 4, "--weights");
+    const auto w = parse_numbers(c.weights, 4, "--weights");
     c.coarsen.weights = {w[0], w[1], w[2], w[3]};
   }
 }

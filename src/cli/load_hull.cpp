@@ -1,7 +1,10 @@
 #include "cli/load_hull.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -28,6 +31,29 @@ void check_merged_manifold(const std::string& file, const SurfaceMesh& mesh,
                       std::to_string(adjacency.nonmanifold_edges.size()) +
                       " edges with more than two faces (the first near x " + std::to_string(p.x) +
                       ", y " + std::to_string(p.y) + ", z " + std::to_string(p.z) + " m); " + hint);
+}
+
+std::vector<double> parse_numbers(const std::string& text, std::size_t count,
+                                  const std::string& option) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw UsageError(option + " " + text + ": '" + item + "' is not a number");
+    }
+    if (!std::isfinite(out.back()))
+      throw UsageError(option + " " + text + ": values must be finite");
+  }
+  if (out.size() != count) {
+    throw UsageError(option + " " + text + ": expected " + std::to_string(count) +
+                     " comma-separated numbers, got " + std::to_string(out.size()));
+  }
+  return out;
 }
 
 long long now_ns() {

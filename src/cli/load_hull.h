@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
@@ -17,6 +18,11 @@ ImportResult load_hull(const std::string& path, const std::string& units, bool q
 // where the first lies, then `hint` (what the user can do), when there are any.
 void check_merged_manifold(const std::string& file, const SurfaceMesh& mesh,
                            const EdgeAdjacency& adjacency, const std::string& hint);
+
+// The comma-separated numbers of an option value ("1,2.5,3"): exactly `count` finite ones, or a
+// UsageError naming the option, the value and the fault.
+std::vector<double> parse_numbers(const std::string& text, std::size_t count,
+                                  const std::string& option);
 
 // Seconds since `start` (steady clock), for the per-stage timings the commands print.
 double seconds_since(long long start_ns);

@@ -358,12 +358,11 @@ CoarsenedMesh coarsen(std::span<const Patch> patches, const SurfaceMesh& fine,
   s.field.w_curvature = options.weights.curvature;
   s.field.w_sources = options.weights.sources;
   s.field.sources = options.sources;
-  s.curvature = vertex_curvatures(patches, fine);
-  s.cfactor.resize(s.curvature.size());
+  s.cfactor = vertex_curvatures(patches, fine);
   parallel_for(0, s.cfactor.size(),
-               [&](std::size_t v) { s.cfactor[v] = s.field.curvature_factor(s.curvature[v]); });
+               [&](std::size_t v) { s.cfactor[v] = s.field.curvature_factor(s.cfactor[v]); });
   s.field.h0 = options.panel_size > 0 ? options.panel_size
-                                      : calibrate_panel_size(fine, s.curvature, s.field,
+                                      : calibrate_panel_size(fine, s.cfactor, s.field,
                                                              target > 0 ? target : kDefaultPanels);
   report.panel_size = s.field.h0;
   s.gate_h.resize(s.position.size());

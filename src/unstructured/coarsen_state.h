@@ -41,8 +41,8 @@ struct State;
 void grade_sizes(const State& s, double slope, std::vector<double>& h);
 
 // h0 such that equilateral panels of the field's sizes would number about `panels` over the
-// fine mesh's area.
-double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> curvature,
+// fine mesh's area; cfactor is the curvature factor per fine vertex.
+double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> cfactor,
                             SizeField field, std::size_t panels);
 
 enum class Kind : std::uint8_t { kSmooth = 0, kOnLine = 1, kCorner = 2 };
@@ -77,8 +77,7 @@ struct State {
   kernel::CollapseWeights weights;
   double bound = 0;  // m: witnesses must stay this close to their panel
   double cos_normal_change = 0;
-  std::vector<double> curvature;  // per vertex, 1/m
-  std::vector<double> cfactor;    // per vertex, field.curvature_factor(curvature)
+  std::vector<double> cfactor;  // per vertex, field.curvature_factor(curvature)
   // Per vertex: the size gate's edge h0 c s, graded so that it grows by at most kGrading per
   // metre (neighbouring panels then differ little in area even where the field jumps), m.
   std::vector<double> gate_h;

@@ -68,7 +68,7 @@ std::vector<double> vertex_curvatures(std::span<const Patch> patches, const Surf
   return k;
 }
 
-double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> curvature,
+double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> cfactor,
                             SizeField field, std::size_t panels) {
   // Panels of edge h have area sqrt(3)/4 h^2; with h = h0 c s, the count is
   // sum_f A_f / (sqrt(3)/4 h0^2 c_f^2 s_f^2). The source factor depends on h0 (size / h0), so
@@ -80,8 +80,8 @@ double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> cur
     const Face& fc = fine.faces[f];
     area[f] = face_area(fine.positions, fc);
     centre[f] = face_centroid(fine.positions, fc);
-    const double k = std::max({curvature[fc[0]], curvature[fc[1]], curvature[fc[2]]});
-    const double c = field.curvature_factor(k);
+    // The factor falls as curvature grows: the face's is its corners' smallest.
+    const double c = std::min({cfactor[fc[0]], cfactor[fc[1]], cfactor[fc[2]]});
     c2[f] = c * c;
   });
   double total = 0;
