@@ -116,6 +116,11 @@ class HullQuery {
                                 const SectionOptions& options = {}) const;
   // Same answer as section() from a loop over every triangle (tests and benchmarks).
   Section section_brute_force(const Plane& plane, const SectionOptions& options = {}) const;
+  // The search alone, the part of a section that the BVH replaces: the mesh faces the plane
+  // crosses (grouped by patch, in face order within a patch; a quad is listed once per crossed
+  // half), found through the BVH or by the loop over every triangle. Both give the same list.
+  std::vector<Index> crossed_faces(const Plane& plane) const;
+  std::vector<Index> crossed_faces_brute_force(const Plane& plane) const;
 
   BBox3d bbox() const;
   double length_scale() const;

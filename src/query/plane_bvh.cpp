@@ -1,5 +1,7 @@
 #include "query/plane_bvh.h"
 
+#include <embree3/rtcore.h>
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -10,24 +12,23 @@
 namespace hm::query {
 namespace {
 
-// Nodes live in memory from Embree's thread-local allocator, owned by the RTCBVH handle. They
-// are trivially destructible, so releasing the handle frees them.
-struct Node {
+// The builder's nodes live in memory from Embree's thread-local allocator, owned by the RTCBVH
+// handle. They are trivially destructible, so releasing the handle frees them.
+struct BuildNode {
   bool leaf;
 };
 
-// Child boxes are stored in the parent (local frame, float, already widened by the slack).
-constexpr unsigned kWidth = 4;  // children per inner node: fewer levels to descend
+constexpr unsigned kWidth = PlaneBvh::kWidth;
 
-struct Inner : Node {
+struct BuildInner : BuildNode {
   unsigned child_count;
   float lo[kWidth][3];
   float hi[kWidth][3];
-  const Node* child[kWidth];
+  const BuildNode* child[kWidth];
 };
 
 // count primitive indices follow the header in the same allocation.
-struct Leaf : Node {
+struct BuildLeaf : BuildNode {
   std::uint32_t count;
   const std::uint32_t* ids() const { return reinterpret_cast<const std::uint32_t*>(this + 1); }
   std::uint32_t* ids() { return reinterpret_cast<std::uint32_t*>(this + 1); }
@@ -36,22 +37,22 @@ struct Leaf : Node {
 // The builder callbacks below do no more than placement-new and copies, so nothing can throw
 // out of them into Embree.
 void* create_inner(RTCThreadLocalAllocator alloc, unsigned child_count, void*) noexcept {
-  void* mem = rtcThreadLocalAlloc(alloc, sizeof(Inner), 16);
+  void* mem = rtcThreadLocalAlloc(alloc, sizeof(BuildInner), 16);
   if (!mem) return nullptr;
-  Inner* n = new (mem) Inner{};
+  BuildInner* n = new (mem) BuildInner{};
   n->leaf = false;
   n->child_count = child_count;
   return n;
 }
 
 void set_children(void* node, void** children, unsigned count, void*) noexcept {
-  Inner* n = static_cast<Inner*>(node);
+  BuildInner* n = static_cast<BuildInner*>(node);
   for (unsigned i = 0; i < count && i < kWidth; ++i)
-    n->child[i] = static_cast<const Node*>(children[i]);
+    n->child[i] = static_cast<const BuildNode*>(children[i]);
 }
 
 void set_bounds(void* node, const RTCBounds** bounds, unsigned count, void*) noexcept {
-  Inner* n = static_cast<Inner*>(node);
+  BuildInner* n = static_cast<BuildInner*>(node);
   for (unsigned i = 0; i < count && i < kWidth; ++i) {
     n->lo[i][0] = bounds[i]->lower_x;
     n->lo[i][1] = bounds[i]->lower_y;
@@ -64,9 +65,9 @@ void set_bounds(void* node, const RTCBounds** bounds, unsigned count, void*) noe
 
 void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count,
                   void*) noexcept {
-  void* mem = rtcThreadLocalAlloc(alloc, sizeof(Leaf) + count * sizeof(std::uint32_t), 16);
+  void* mem = rtcThreadLocalAlloc(alloc, sizeof(BuildLeaf) + count * sizeof(std::uint32_t), 16);
   if (!mem) return nullptr;
-  Leaf* leaf = new (mem) Leaf{};
+  BuildLeaf* leaf = new (mem) BuildLeaf{};
   leaf->leaf = true;
   leaf->count = static_cast<std::uint32_t>(count);
   for (size_t i = 0; i < count; ++i) leaf->ids()[i] = prims[i].primID;
@@ -93,15 +94,25 @@ bool box_meets_plane(const float* lo, const float* hi, const Vec3d& n, double c)
   return std::abs(centre_dist) <= radius;
 }
 
-}  // namespace
 
-PlaneBvh::~PlaneBvh() {
-  if (bvh_) rtcReleaseBVH(bvh_);
-}
+// Releases the Embree BVH (and with it the builder's nodes) on every path out of build().
+struct BvhHandle {
+  RTCBVH bvh = nullptr;
+  ~BvhHandle() {
+    if (bvh) rtcReleaseBVH(bvh);
+  }
+};
+
+}  // namespace
 
 void PlaneBvh::build(std::span<const Vec3d> positions,
                      std::span<const std::array<Index, 3>> triangles, double slack) {
+  nodes_.clear();
+  prims_.clear();
+  corners_.clear();
+  if (triangles.empty()) return;
   std::vector<RTCBuildPrimitive> prims(triangles.size());
+  RTCBounds all{};
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     Vec3d lo = positions[triangles[i][0]], hi = lo;
     for (int k = 1; k < 3; ++k) {
@@ -120,9 +131,19 @@ void PlaneBvh::build(std::span<const Vec3d> positions,
     b.upper_z = round_up(hi.z + slack);
     b.geomID = 0;
     b.primID = static_cast<unsigned>(i);
+    if (i == 0) {
+      all = {b.lower_x, b.lower_y, b.lower_z, 0, b.upper_x, b.upper_y, b.upper_z, 0};
+    } else {
+      all.lower_x = std::min(all.lower_x, b.lower_x);
+      all.lower_y = std::min(all.lower_y, b.lower_y);
+      all.lower_z = std::min(all.lower_z, b.lower_z);
+      all.upper_x = std::max(all.upper_x, b.upper_x);
+      all.upper_y = std::max(all.upper_y, b.upper_y);
+      all.upper_z = std::max(all.upper_z, b.upper_z);
+    }
   }
-  if (bvh_) rtcReleaseBVH(bvh_);
-  bvh_ = rtcNewBVH(embree_device());
+  BvhHandle handle;
+  handle.bvh = rtcNewBVH(embree_device());
   check_embree("rtcNewBVH");
   RTCBuildArguments args = rtcDefaultBuildArguments();
   // Medium quality: binned SAH without spatial splits (which would need splitPrimitive and a
@@ -130,9 +151,12 @@ void PlaneBvh::build(std::span<const Vec3d> positions,
   args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
   args.maxBranchingFactor = kWidth;
   args.maxDepth = 64;
-  args.minLeafSize = 1;
+  // Leaves of 8: with the SAH's own choice (1 to 8) leaves held 1.3 triangles on average, and a
+  // waterline visited 2,100 nodes for 3,000 triangles; testing a few more triangles costs less
+  // than the node loads (measured: the search takes a third of the time).
+  args.minLeafSize = 8;
   args.maxLeafSize = 8;
-  args.bvh = bvh_;
+  args.bvh = handle.bvh;
   args.primitives = prims.data();
   args.primitiveCount = prims.size();
   args.primitiveArrayCapacity = prims.size();
@@ -140,25 +164,70 @@ void PlaneBvh::build(std::span<const Vec3d> positions,
   args.setNodeChildren = set_children;
   args.setNodeBounds = set_bounds;
   args.createLeaf = create_leaf;
-  root_ = prims.empty() ? nullptr : rtcBuildBVH(&args);
+  const BuildNode* root = static_cast<const BuildNode*>(rtcBuildBVH(&args));
   check_embree("rtcBuildBVH");
+
+  // Depth-first copy. The root is always a flat node; a root that is a leaf becomes its only
+  // child, under the box of all primitives.
+  prims_.reserve(triangles.size());
+  auto copy_leaf = [&](const BuildLeaf* leaf, unsigned& first, unsigned& count) {
+    first = static_cast<unsigned>(prims_.size());
+    count = leaf->count;
+    prims_.insert(prims_.end(), leaf->ids(), leaf->ids() + leaf->count);
+  };
+  auto flatten = [&](auto&& self, const BuildInner* inner) -> void {
+    const std::size_t at = nodes_.size();
+    nodes_.emplace_back();
+    nodes_[at].child_count = std::min(inner->child_count, kWidth);
+    for (unsigned k = 0; k < nodes_[at].child_count; ++k) {
+      for (int a = 0; a < 3; ++a) {
+        nodes_[at].lo[k][a] = inner->lo[k][a];
+        nodes_[at].hi[k][a] = inner->hi[k][a];
+      }
+      const BuildNode* child = inner->child[k];
+      if (child->leaf) {
+        unsigned first = 0, count = 0;
+        copy_leaf(static_cast<const BuildLeaf*>(child), first, count);
+        nodes_[at].first[k] = first;
+        nodes_[at].count[k] = count;
+      } else {
+        nodes_[at].first[k] = static_cast<unsigned>(nodes_.size());
+        nodes_[at].count[k] = 0;
+        self(self, static_cast<const BuildInner*>(child));
+      }
+    }
+  };
+  if (root->leaf) {
+    nodes_.emplace_back();
+    nodes_[0].child_count = 1;
+    const float lo[3] = {all.lower_x, all.lower_y, all.lower_z};
+    const float hi[3] = {all.upper_x, all.upper_y, all.upper_z};
+    for (int a = 0; a < 3; ++a) {
+      nodes_[0].lo[0][a] = lo[a];
+      nodes_[0].hi[0][a] = hi[a];
+    }
+    copy_leaf(static_cast<const BuildLeaf*>(root), nodes_[0].first[0], nodes_[0].count[0]);
+  } else {
+    flatten(flatten, static_cast<const BuildInner*>(root));
+  }
+  corners_.resize(prims_.size());
+  for (std::size_t slot = 0; slot < prims_.size(); ++slot) corners_[slot] = triangles[prims_[slot]];
 }
 
-void PlaneBvh::query_plane(const Vec3d& n, double c, std::vector<Index>& out) const {
-  if (!root_) return;
-  const Node* stack[64 * kWidth];
+void PlaneBvh::query_plane(const Vec3d& n, double c, std::vector<SlotRange>& out) const {
+  if (nodes_.empty()) return;
+  std::uint32_t stack[64 * kWidth];
   int top = 0;
-  stack[top++] = static_cast<const Node*>(root_);
+  stack[top++] = 0;
   while (top > 0) {
-    const Node* node = stack[--top];
-    if (node->leaf) {
-      const Leaf* leaf = static_cast<const Leaf*>(node);
-      out.insert(out.end(), leaf->ids(), leaf->ids() + leaf->count);
-      continue;
-    }
-    const Inner* inner = static_cast<const Inner*>(node);
-    for (unsigned k = 0; k < inner->child_count && k < kWidth; ++k) {
-      if (box_meets_plane(inner->lo[k], inner->hi[k], n, c)) stack[top++] = inner->child[k];
+    const Node& node = nodes_[stack[--top]];
+    for (unsigned k = 0; k < node.child_count; ++k) {
+      if (!box_meets_plane(node.lo[k], node.hi[k], n, c)) continue;
+      if (node.count[k] > 0) {
+        out.push_back({node.first[k], node.count[k]});
+      } else {
+        stack[top++] = node.first[k];
+      }
     }
   }
 }

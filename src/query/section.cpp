@@ -45,8 +45,8 @@ struct Crossed {
   std::array<double, 3> side;
 };
 
-bool crosses(const Impl& m, const CutPlane& pl, Index t, Crossed& out) {
-  const auto& tri = m.tri[t];
+bool crosses(const Impl& m, const CutPlane& pl, Index t, const std::array<Index, 3>& tri,
+             Crossed& out) {
   // A triangle with a repeated corner has no area and would link an edge to itself.
   if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0]) return false;
   out = {t, {side(m, pl, tri[0]), side(m, pl, tri[1]), side(m, pl, tri[2])}};
@@ -78,12 +78,15 @@ struct CrossingGraph {
 CrossingGraph build_graph(const Impl& m, std::span<const Crossed> crossed) {
   constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
   int bits = 4;
-  while ((std::size_t{1} << bits) < 4 * crossed.size()) ++bits;
+  while ((std::size_t{1} << bits) < 2 * crossed.size() + 4) ++bits;
   const std::size_t mask = (std::size_t{1} << bits) - 1;
   std::vector<std::uint64_t> keys(mask + 1, kEmpty);
   std::vector<Index> key_node(mask + 1);
   std::vector<Index> degree;
   CrossingGraph g;
+  // A crossed triangle has two crossing edges, most of them shared with a neighbour.
+  g.edges.reserve(crossed.size() + 2);
+  degree.reserve(crossed.size() + 2);
   g.segment_nodes.assign(crossed.size(), {kInvalid, kInvalid});
   for (Index s = 0; s < crossed.size(); ++s) {
     const Crossed& c = crossed[s];
@@ -176,24 +179,38 @@ SectionPoint refine_node(const Impl& m, const CutPlane& pl, const EdgeUse& e, bo
   return {r.point, p, r.uv};
 }
 
-Section cut(const Impl& m, const Plane& plane, const SectionOptions& options, bool brute_force) {
-  const CutPlane pl = make_plane(m, plane);
+// The crossed triangles in triangle order, found by the BVH or by a loop over all triangles.
+std::vector<Crossed> find_crossed(const Impl& m, const CutPlane& pl, bool brute_force) {
   std::vector<Crossed> crossed;
   Crossed c;
   if (brute_force) {
     for (Index t = 0; t < m.tri.size(); ++t) {
-      if (crosses(m, pl, t, c)) crossed.push_back(c);
+      if (crosses(m, pl, t, m.tri[t], c)) crossed.push_back(c);
     }
   } else {
-    std::vector<Index> boxed;
-    m.plane_bvh.query_plane(pl.n, pl.c, boxed);
-    for (Index t : boxed) {
-      if (crosses(m, pl, t, c)) crossed.push_back(c);
+    std::vector<query::PlaneBvh::SlotRange> leaves;
+    leaves.reserve(256);
+    m.plane_bvh.query_plane(pl.n, pl.c, leaves);
+    std::size_t boxed = 0;
+    for (const auto& leaf : leaves) boxed += leaf.count;
+    crossed.reserve(boxed);
+    for (const auto& leaf : leaves) {
+      for (Index slot = leaf.first; slot < leaf.first + leaf.count; ++slot) {
+        if (crosses(m, pl, m.plane_bvh.prim(slot), m.plane_bvh.corners(slot), c)) {
+          crossed.push_back(c);
+        }
+      }
     }
     // Triangle order, as the brute-force loop meets them: both give the same section.
     std::sort(crossed.begin(), crossed.end(),
               [](const Crossed& a, const Crossed& b) { return a.tri < b.tri; });
   }
+  return crossed;
+}
+
+Section cut(const Impl& m, const Plane& plane, const SectionOptions& options, bool brute_force) {
+  const CutPlane pl = make_plane(m, plane);
+  const std::vector<Crossed> crossed = find_crossed(m, pl, brute_force);
   if (crossed.empty()) return Section{};
 
   const CrossingGraph g = build_graph(m, crossed);
@@ -211,6 +228,7 @@ Section cut(const Impl& m, const Plane& plane, const SectionOptions& options, bo
   for (const auto& [nodes, closed] : chain_nodes(g)) {
     SectionPolyline line;
     line.closed = closed;
+    line.points.reserve(nodes.size());
     for (Index n : nodes) line.points.push_back(points[n]);
     query::drop_repeated_points(line, repeat_tol);
     if (line.points.size() < 2) continue;
@@ -220,7 +238,22 @@ Section cut(const Impl& m, const Plane& plane, const SectionOptions& options, bo
   return query::assemble_section(std::move(pieces), pl.n, options.join_tolerance * m.length);
 }
 
+std::vector<Index> faces_crossed_by(const Impl& m, const Plane& plane, bool brute_force) {
+  const std::vector<Crossed> crossed = find_crossed(m, make_plane(m, plane), brute_force);
+  std::vector<Index> faces(crossed.size());
+  for (std::size_t i = 0; i < crossed.size(); ++i) faces[i] = m.tri_face[crossed[i].tri];
+  return faces;
+}
+
 }  // namespace
+
+std::vector<Index> HullQuery::crossed_faces(const Plane& plane) const {
+  return faces_crossed_by(*impl_, plane, false);
+}
+
+std::vector<Index> HullQuery::crossed_faces_brute_force(const Plane& plane) const {
+  return faces_crossed_by(*impl_, plane, true);
+}
 
 Section HullQuery::section(const Plane& plane, const SectionOptions& options) const {
   return cut(*impl_, plane, options, false);

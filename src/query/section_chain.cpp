@@ -49,10 +49,17 @@ std::vector<Index> link_ends(const std::vector<SectionPolyline>& pieces, double 
 
 // Follows links from piece `first`, entered at end `entry`, until an unlinked end or back at
 // `first`. Appends points (dropping the duplicate at every joint) and marks pieces used.
-SectionPolyline follow(const std::vector<SectionPolyline>& pieces, const std::vector<Index>& link,
+SectionPolyline follow(std::vector<SectionPolyline>& pieces, const std::vector<Index>& link,
                        Index first, Index entry, std::vector<bool>& used) {
   SectionPolyline out;
   Index piece = first, in = entry;
+  // A piece with no link at its far end is the whole chain: move it.
+  if (link[in % 2 == 0 ? 2 * piece + 1 : 2 * piece] == kInvalid) {
+    used[piece] = true;
+    out.points = std::move(pieces[piece].points);
+    if (in % 2 != 0) std::reverse(out.points.begin(), out.points.end());
+    return out;
+  }
   while (true) {
     used[piece] = true;
     const auto& pts = pieces[piece].points;
@@ -107,16 +114,16 @@ void orient(SectionPolyline& line, const Vec3d& n, double tol) {
 
 void drop_repeated_points(SectionPolyline& line, double tol) {
   auto& pts = line.points;
-  std::vector<SectionPoint> kept;
-  kept.reserve(pts.size());
-  for (const SectionPoint& p : pts) {
-    if (!kept.empty() && norm(p.point - kept.back().point) <= tol) continue;
-    kept.push_back(p);
+  std::size_t kept = 0;  // in place: pts[0, kept) are the points kept so far
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (kept > 0 && norm(pts[i].point - pts[kept - 1].point) <= tol) continue;
+    if (kept != i) pts[kept] = pts[i];
+    ++kept;
   }
-  if (line.closed && kept.size() > 1 && norm(kept.back().point - kept.front().point) <= tol) {
-    kept.pop_back();
+  pts.resize(kept);
+  if (line.closed && pts.size() > 1 && norm(pts.back().point - pts.front().point) <= tol) {
+    pts.pop_back();
   }
-  pts = std::move(kept);
 }
 
 Section assemble_section(std::vector<SectionPolyline> pieces, const Vec3d& n, double join_tol) {

@@ -356,6 +356,38 @@ TEST(HullQuery, BvhSectionEqualsBruteForce) {
   EXPECT_GT(nonempty, 20);
 }
 
+// The search alone: the BVH and the loop list the same faces, and every listed face has corners
+// on both sides of the plane (the grid's faces are quads, so a face's crossed halves both count).
+TEST(HullQuery, CrossedFacesThroughTheBvhEqualTheLoopAndStraddleThePlane) {
+  const Scene scene = split_wigley_scene(false);
+  const HullQuery q = scene.query();
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int nonempty = 0;
+  for (int i = 0; i < 40; ++i) {
+    const Plane plane{{0.5 * kL * unit(rng), 0.5 * kB * unit(rng), -kT * (0.5 + 0.5 * unit(rng))},
+                      {unit(rng), unit(rng), unit(rng)}};
+    const std::vector<Index> a = q.crossed_faces(plane), b = q.crossed_faces_brute_force(plane);
+    ASSERT_EQ(a, b);
+    nonempty += !a.empty();
+    const Vec3d n = normalized(plane.normal);
+    for (Index f : a) {
+      double lo = 1e300, hi = -1e300;
+      for (Index v : scene.mesh.faces[f]) {
+        if (v == kInvalid) continue;
+        const double d = dot(n, scene.mesh.positions[v] - plane.point);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+      EXPECT_LT(lo, 1e-12);
+      EXPECT_GE(hi, -1e-12);
+    }
+  }
+  EXPECT_GT(nonempty, 15);
+  // A plane that misses crosses nothing.
+  EXPECT_TRUE(q.crossed_faces({{0, 0, 0.5}, {0, 0, 1}}).empty());
+}
+
 TEST(HullQuery, PlanesThatMissTheHullGiveNothing) {
   const Scene scene = wigley_scene();
   const HullQuery q = scene.query();
