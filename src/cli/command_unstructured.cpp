@@ -4,19 +4,24 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/floating_options.h"
 #include "cli/load_hull.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
 #include "mesh/adjacency.h"
+#include "quality/hydrostatics.h"
 #include "quality/quality_report.h"
 #include "query/hull_query.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/coarsen.h"
+#include "unstructured/cut_waterplane.h"
 #include "unstructured/features.h"
 #include "unstructured/measure_deviation.h"
 #include "unstructured/merge.h"
@@ -38,6 +43,7 @@ struct UnstructuredCommand {
   CoarsenOptions coarsen;
   std::string weights;
   std::vector<std::string> point_sources, line_sources, box_sources;
+  FloatingArgs floating;
 };
 
 void parse_sources(UnstructuredCommand& c) {
@@ -66,36 +72,67 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   check_mesh_output(c.output);
   const long long t0 = now_ns();
   const ImportResult hull = load_hull(c.file, c.units, g.quiet);
+  // Floating: the patches are placed first, so that everything below works in the floating frame
+  // and the waterplane z = 0 cuts the merged fine mesh before it is coarsened.
+  std::optional<Floating> floating;
+  std::vector<Patch> placed_patches;
+  if (c.floating.given()) {
+    floating = resolve_floating(c.floating, hull.patches, hull.bbox);
+    placed_patches = transformed(hull.patches, floating->transform);
+    c.features.waterline_z = 0;
+  }
+  const std::span<const Patch> patches =
+      floating ? std::span<const Patch>(placed_patches) : std::span<const Patch>(hull.patches);
   const double t_import = seconds_since(t0);
 
-  // The fine mesh: sized from the panel target unless the user sized it.
+  // The fine mesh: sized from the panel target unless the user sized it (over the whole hull, so
+  // that a draft does not change the panel size).
   TessellateOptions o = c.tessellate;
   const std::size_t panels = c.coarsen.target_panels > 0 ? c.coarsen.target_panels : 4000;
-  std::size_t fine = c.triangles;
-  if (fine == 0 && o.edge_length <= 0) {
-    fine = std::clamp(kFinePerPanel * panels, kFineMin, kFineMax);
+  std::size_t fine_triangles = c.triangles;
+  if (fine_triangles == 0 && o.edge_length <= 0) {
+    fine_triangles = std::clamp(kFinePerPanel * panels, kFineMin, kFineMax);
   }
-  if (fine > 0) o.edge_length = edge_length_for_triangles(hull.patches, fine);
-  const Tessellation t = tessellate(hull.patches, o, silent_progress());
-  const MergedSurface merged = merge_patches(hull.patches, t.mesh, c.merge, silent_progress());
+  if (fine_triangles > 0) o.edge_length = edge_length_for_triangles(patches, fine_triangles);
+  const Tessellation t = tessellate(patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(patches, t.mesh, c.merge, silent_progress());
+  std::optional<WaterplaneCut> cut;
+  if (floating) cut = cut_at_waterplane(patches, merged.mesh, {});
+  const SurfaceMesh& fine = cut ? cut->mesh : merged.mesh;
   const long long t1 = now_ns();
-  const EdgeAdjacency adj = build_edge_adjacency(merged.mesh.faces, merged.mesh.vertex_count());
-  check_merged_manifold(c.file, merged.mesh, adj,
-                        "`hullmesh merge` writes the surface for inspection");
-  const FeatureSet features = find_features(merged.mesh, adj, hull.patches, c.features);
+  const EdgeAdjacency adj = build_edge_adjacency(fine.faces, fine.vertex_count());
+  check_merged_manifold(c.file, fine, adj, "`hullmesh merge` writes the surface for inspection");
+  const FeatureSet features = find_features(fine, adj, patches, c.features);
   const double t_features = seconds_since(t1);
 
   c.coarsen.fine_chord_error = t.summary.max_chord_error;
   const CoarsenedMesh panels_mesh =
-      coarsen(hull.patches, merged.mesh, adj, features, c.coarsen, silent_progress());
+      coarsen(patches, fine, adj, features, c.coarsen, silent_progress());
   const CoarsenReport& r = panels_mesh.report;
   const long long t2 = now_ns();
-  const HullQuery query(hull.patches, merged.mesh);
+  const HullQuery query(patches, fine);
   const DeviationMeasure dev = measure_deviation(query, panels_mesh.mesh);
   QualityOptions qo;
   qo.knuckle_edges = panels_mesh.feature_edges;
   qo.rules.min_triangle_angle_share = 0;
+  if (floating) qo.waterline_z = 0;
   const QualityReport quality = assess_quality(panels_mesh.mesh, qo);
+  // The mesh's hydrostatics against the exact NURBS at the same position: the direct measure of
+  // the panels' geometric accuracy.
+  std::optional<Hydrostatics> hydro_mesh, hydro_nurbs;
+  if (floating) {
+    FloatingPosition position;
+    position.waterline_z = 0;
+    position.half_hull = quality.half_hull;
+    hydro_mesh = hydrostatics_mesh(panels_mesh.mesh, position);
+    // The NURBS integrals follow each patch's declared normal: turn the patches the merge found
+    // wound into the hull, as it turned their faces. 1e-9 relative is ample against panels.
+    std::vector<Patch> outward(patches.begin(), patches.end());
+    for (PatchId p : merged.report.patches_flipped) outward[p].reversed = !outward[p].reversed;
+    NurbsHydrostaticsOptions ho;
+    ho.rel_tol = 1e-9;
+    hydro_nurbs = hydrostatics_nurbs(outward, position, ho);
+  }
   const double t_report = seconds_since(t2);
 
   MeshWriteOptions w;
@@ -125,6 +162,30 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
         "  deviation from the NURBS: max %.3g m at (%.4g, %.4g, %.4g) (bound %.3g m), "
         "mean %.3g m\n",
         dev.max, dev.where.x, dev.where.y, dev.where.z, r.max_deviation, dev.mean);
+    if (floating) {
+      const WaterplaneCutReport& cr = cut->report;
+      std::printf(
+          "  floating: draft %.4g m above z = %.4g m, trim %.3g deg, heel %.3g deg (pivot x %.4g "
+          "m); output frame: free surface z = 0\n",
+          floating->draft, floating->baseline_z, floating->trim_deg, floating->heel_deg,
+          floating->pivot_x);
+      std::printf(
+          "  waterplane cut of the fine mesh: %zu of %zu faces kept, %zu split, %zu vertices "
+          "snapped onto the plane, %zu new on the waterline (%zu not refined to tolerance)\n",
+          cr.faces_kept, cr.faces_in, cr.faces_split, cr.vertices_snapped, cr.edges_cut,
+          cr.unconverged);
+      auto rel = [](double a, double b) { return b != 0 ? 100 * (a - b) / b : 0.0; };
+      std::printf(
+          "  hydrostatics, mesh against NURBS: volume %.6g m^3 (%+.3f%%), wetted area %.6g m^2 "
+          "(%+.3f%%), waterplane area %.6g m^2 (%+.3f%%), LCB %.5g m (NURBS %.5g)\n",
+          hydro_mesh->volume, rel(hydro_mesh->volume, hydro_nurbs->volume),
+          hydro_mesh->wetted_area, rel(hydro_mesh->wetted_area, hydro_nurbs->wetted_area),
+          hydro_mesh->waterplane_area,
+          rel(hydro_mesh->waterplane_area, hydro_nurbs->waterplane_area),
+          hydro_mesh->buoyancy_centre.x, hydro_nurbs->buoyancy_centre.x);
+      std::printf("  free edges below the waterline: %zu\n",
+                  quality.topology.free_edges_below);
+    }
     std::printf("  topology: %zu boundary loops, %zu non-manifold edges, orientation %s\n",
                 quality.topology.boundary_loops, quality.topology.nonmanifold_edges,
                 quality.topology.orientation_consistent ? "consistent" : "INCONSISTENT");
@@ -176,8 +237,6 @@ void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& a
   cmd->add_option("--knuckle-angle", c->features.knuckle_angle_deg,
                   "Dihedral angle in degrees above which an edge may be a knuckle")
       ->check(CLI::Range(1.0, 179.0));
-  cmd->add_option("--waterline-z", c->features.waterline_z,
-                  "z of a waterline cut: boundary edges on it are waterline");
   cmd->add_option("--triangles", c->triangles,
                   "Fine triangles to coarsen from (default 16 per panel, 40k to 2M)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{50'000'000}));
@@ -193,6 +252,7 @@ void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& a
                 "One collapse at a time from a priority queue (the reference)");
   cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
       ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
+  add_floating_options(cmd, c->floating);
   cmd->callback(
       [c, &global, &action] { action = [c, &global] { return run_unstructured(*c, global); }; });
 }

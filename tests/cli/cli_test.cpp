@@ -384,5 +384,97 @@ TEST(CliUnstructured, BadSourceAndWeightsAreUsageErrors) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// `quality --json` of a panel file, parsed.
+nlohmann::json quality_json(const fs::path& mesh) {
+  const auto q = run_hullmesh("quality --json '" + mesh.string() + "'");
+  return nlohmann::json::parse(q.out.substr(q.out.find('{')));
+}
+
+// The Wigley hull at its design draft from the unstructured mesher: panels end on the waterline
+// (the highest point of the mesh is z = 0 and every boundary edge is on the waterline or the
+// centre plane), and the displaced volume converges to the closed form 4/9 L B T from below at
+// second order: four times the panels halve the panel edge and quarter the error.
+TEST(CliUnstructured, WigleyAtItsDraftEndsOnTheWaterlineAndConvergesAtSecondOrder) {
+  const fs::path dir = test::scratch_dir("cli_unstructured_draft");
+  const fs::path igs = dir / "wigley.igs";
+  ASSERT_EQ(run_hullmesh("-q generate wigley --patches 4 -o '" + igs.string() + "'").exit_code, 0);
+  const double exact = 4.0 / 9.0 * 100 * 10 * 6.25;  // L = 100, B = 10, T = 6.25 (generator)
+  double error[2] = {0, 0};
+  double lcb_even = 0;
+  for (int i = 0; i < 2; ++i) {
+    const int panels = i == 0 ? 500 : 2000;
+    const fs::path gdf = dir / ("wigley_" + std::to_string(panels) + ".gdf");
+    const auto r = run_hullmesh("unstructured '" + igs.string() + "' -o '" + gdf.string() +
+                                "' --draft 6.25 --triangles 30000 --panels " +
+                                std::to_string(panels));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("free edges below the waterline: 0"), std::string::npos) << r.out;
+    const nlohmann::json q = quality_json(gdf);
+    EXPECT_EQ(q["topology"]["waterline_z"].get<double>(), 0.0);
+    EXPECT_EQ(q["topology"]["free_edges_below_waterline"].get<int>(), 0);
+    EXPECT_EQ(q["topology"]["above_water_edges"].get<int>(), 0);
+    EXPECT_GT(q["topology"]["waterline_edges"].get<int>(), 10);
+    EXPECT_TRUE(q["half_hull"].get<bool>());
+    error[i] = q["hydrostatics"]["volume_m3"].get<double>() / exact - 1;
+    if (i == 1) lcb_even = q["hydrostatics"]["buoyancy_centre_m"][0].get<double>();
+  }
+  EXPECT_LT(error[0], 0);  // panels inscribed in the convex sections
+  EXPECT_LT(error[1], 0);
+  EXPECT_LT(-error[0], 0.02);
+  const double order = std::log2(error[0] / error[1]) / std::log2(2.0);  // per halving of h
+  EXPECT_GT(order, 1.5) << error[0] << " " << error[1];
+  EXPECT_LT(order, 2.6) << error[0] << " " << error[1];
+
+  // Trimmed 2 degrees by the bow (+x): more of the volume moves forward.
+  const fs::path trimmed = dir / "wigley_trim.gdf";
+  const auto r = run_hullmesh("unstructured '" + igs.string() + "' -o '" + trimmed.string() +
+                              "' --draft 5 --trim 2 --triangles 30000 --panels 2000");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const nlohmann::json q = quality_json(trimmed);
+  EXPECT_EQ(q["topology"]["free_edges_below_waterline"].get<int>(), 0);
+  EXPECT_GT(q["hydrostatics"]["buoyancy_centre_m"][0].get<double>(), lcb_even + 1.0);
+}
+
+// The check on a real hull: DTMB 5415 at its design draft (the file's z = 0, model
+// scale), 4,000 panels: the mesh's volume and wetted area within 0.5% of the exact NURBS values
+// at the same position, which the command prints.
+TEST(CliUnstructured, Dtmb5415AtItsDesignDraftMatchesTheNurbsHydrostatics) {
+  const fs::path hull = test::shared_hull("dtmb5415.iges");
+  if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
+  const fs::path dir = test::scratch_dir("cli_unstructured_dtmb");
+  const fs::path gdf = dir / "dtmb.gdf";
+  const auto r = run_hullmesh("unstructured '" + hull.string() + "' -o '" + gdf.string() +
+                              "' --waterline-z 0 --panels 4000");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m,
+                                std::regex("volume [0-9.e+-]+ m\\^3 \\(([-+0-9.]+)%\\), wetted area "
+                                           "[0-9.e+-]+ m\\^2 \\(([-+0-9.]+)%\\)")))
+      << r.out;
+  EXPECT_LT(std::abs(std::stod(m[1].str())), 0.5) << r.out;
+  EXPECT_LT(std::abs(std::stod(m[2].str())), 0.5) << r.out;
+  const nlohmann::json q = quality_json(gdf);
+  EXPECT_EQ(q["topology"]["nonmanifold_edges"].get<int>(), 0);
+  EXPECT_EQ(q["zero_area"].get<int>(), 0);
+  EXPECT_GT(q["topology"]["waterline_edges"].get<int>(), 20);
+}
+
+TEST(CliUnstructured, ImpossibleFloatingPositionsAreUsageErrors) {
+  const fs::path dir = test::scratch_dir("cli_unstructured_floating_bad");
+  const fs::path igs = dir / "w.igs", out = dir / "p.gdf";
+  ASSERT_EQ(run_hullmesh("-q generate wigley -o '" + igs.string() + "'").exit_code, 0);
+  const std::string base = "unstructured '" + igs.string() + "' -o '" + out.string() + "' ";
+  auto r = run_hullmesh(base + "--draft 50");  // the deck is at 8 m
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("at or above the hull's highest point"), std::string::npos) << r.out;
+  r = run_hullmesh(base + "--waterline-z -3");  // below the keel
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("wholly above the waterplane"), std::string::npos) << r.out;
+  r = run_hullmesh(base + "--draft 3 --waterline-z 3");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("excludes"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
 }  // namespace hm

@@ -1,0 +1,44 @@
+// The floating position options shared by the meshers: --draft, --waterline-z, --baseline-z,
+// --trim, --heel, --pivot-x. They place the hull before it is meshed, so that the waterplane cuts
+// it as a border (panels end on the waterline) instead of clipping a finished mesh.
+//
+// Output frame when any is given: the floating frame with the free surface at z = 0 (the frame
+// WAMIT, NEMOH, HAMS and Hydrostar expect): the file's x and y, rotated by heel and trim about the
+// pivot, and shifted in z.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "core/bbox.h"
+#include "nurbs/patch.h"
+#include "quality/hydrostatics.h"
+
+namespace hm::cli {
+
+struct FloatingArgs {
+  std::optional<double> draft;        // m above the baseline
+  std::optional<double> waterline_z;  // m, the waterplane in the file's frame
+  std::optional<double> baseline_z;   // m; default: the lowest point of the hull
+  std::optional<double> pivot_x;      // m; default: the middle of the hull's length
+  double trim_deg = 0;                // bow down positive
+  double heel_deg = 0;                // starboard down positive
+  bool given() const { return draft || waterline_z || trim_deg != 0 || heel_deg != 0; }
+};
+
+void add_floating_options(CLI::App* cmd, FloatingArgs& args);
+
+struct Floating {
+  FloatingTransform transform;  // file frame -> floating frame (free surface z = 0)
+  double draft = 0, baseline_z = 0, pivot_x = 0, trim_deg = 0, heel_deg = 0;
+};
+
+// The placement for `args` of a hull whose surfaces span `box` (file frame, metres). Throws
+// UsageError when the waterplane would miss the placed hull: a draft at or above its highest point
+// (nothing left dry, no waterline) or a position that lifts it wholly out of the water.
+Floating resolve_floating(const FloatingArgs& args, std::span<const Patch> patches,
+                          const BBox3d& box);
+
+}  // namespace hm::cli

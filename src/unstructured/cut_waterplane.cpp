@@ -1,0 +1,372 @@
+// Cut: collect the side of every vertex -> snap interior vertices near the plane onto it ->
+// collect the crossing edges and refine each crossing onto its patch -> split the crossed faces,
+// keeping the part below -> compact the vertices.
+#include "unstructured/cut_waterplane.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <utility>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "query/surface_refine.h"
+
+namespace hm {
+namespace {
+
+constexpr int kSnapNewton = 8;
+
+// The corners of the triangles of face f: one triangle, or the quad's 0-1-2 and 0-2-3.
+int face_triangles(const Face& f, std::array<std::array<Index, 3>, 2>& out) {
+  out[0] = {f[0], f[1], f[2]};
+  if (f[3] == kInvalid) return 1;
+  out[1] = {f[0], f[2], f[3]};
+  return 2;
+}
+
+// Dihedral angle above which an edge counts as a knuckle here (below the feature finder's 25
+// degrees, so that no knuckle it will find is bent by a snap).
+constexpr double kSharpCos = 0.9396926207859084;  // cos 20 degrees
+
+// What the snap needs to know of the mesh's edges.
+struct SnapFacts {
+  std::vector<double> shortest;          // per vertex, its shortest edge (metres)
+  std::vector<std::uint8_t> movable;     // per vertex: no line edge at it, all faces on its patch
+  std::vector<std::array<Index, 2>> line_edges;  // ascending; see below
+};
+
+// Line edges are those a vertex may only slide along: on the mesh boundary (deck edge, centre
+// plane), between two patches, or sharp. A vertex with none lies inside one smooth patch and may
+// move along it freely.
+SnapFacts snap_facts(const SurfaceMesh& mesh) {
+  std::vector<std::pair<std::uint64_t, Index>> uses;  // (edge key, face)
+  SnapFacts facts;
+  facts.movable.assign(mesh.vertex_count(), 1);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::array<std::array<Index, 3>, 2> tris;
+    const int n = face_triangles(mesh.faces[f], tris);
+    for (int t = 0; t < n; ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const Index a = tris[t][k], b = tris[t][(k + 1) % 3];
+        uses.push_back({(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b),
+                        static_cast<Index>(f)});
+        if (mesh.vertex_patch[a] != mesh.face_patch[f]) facts.movable[a] = 0;
+      }
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+  facts.shortest.assign(mesh.vertex_count(), std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    while (j < uses.size() && uses[j].first == uses[i].first) ++j;
+    const Index a = static_cast<Index>(uses[i].first >> 32);
+    const Index b = static_cast<Index>(uses[i].first & 0xffffffffu);
+    const double len = norm(mesh.positions[a] - mesh.positions[b]);
+    facts.shortest[a] = std::min(facts.shortest[a], len);
+    facts.shortest[b] = std::min(facts.shortest[b], len);
+    // A quad's diagonal is used twice by one face: interior, as it should be.
+    bool line = j - i != 2;
+    if (!line && uses[i].second != uses[i + 1].second) {
+      const Index f0 = uses[i].second, f1 = uses[i + 1].second;
+      line = mesh.face_patch[f0] != mesh.face_patch[f1] ||
+             dot(face_normal(mesh.positions, mesh.faces[f0]),
+                 face_normal(mesh.positions, mesh.faces[f1])) < kSharpCos;
+    }
+    if (line) {
+      facts.line_edges.push_back({a, b});
+      facts.movable[a] = facts.movable[b] = 0;
+    }
+    i = j;
+  }
+  return facts;
+}
+
+// Newton on g(u, v) = S(u, v).z - z0 along the gradient of g in (u, v): the nearest parameter
+// step that puts the point on the plane. Returns false when it does not converge or would leave
+// the domain or move the point farther than max_move.
+bool snap_onto_plane(const NurbsSurface& s, const query::ParamDomain& d, double z0, double tol,
+                     double max_move, Vec2d& uv, Vec3d& p) {
+  Vec2d x = uv;
+  for (int it = 0; it < kSnapNewton; ++it) {
+    const SurfaceDerivs dv = evaluate_derivs(s, x.x, x.y, 1);
+    const double g = dv.p.z - z0;
+    if (std::abs(g) <= tol) {
+      if (norm(dv.p - p) > max_move) return false;
+      uv = x;
+      p = dv.p;
+      return true;
+    }
+    const Vec2d grad{dv.su.z, dv.sv.z};
+    const double g2 = dot(grad, grad);
+    if (!(g2 > 0)) return false;
+    const Vec2d next = x - (g / g2) * grad;
+    if (d.map(next) != next) return false;  // would leave the patch: leave the vertex alone
+    x = next;
+  }
+  return false;
+}
+
+// The crossing of edge (a, b) with the plane z = z0, on patch p's NURBS (a patch of a face at
+// the edge): along the edge's parameter segment when both corners name p; otherwise the point of
+// the section curve nearest the linear crossing, from the corner that names p (or from a on a's
+// patch when neither does).
+query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
+                                         std::span<const query::ParamDomain> domains,
+                                         const SurfaceMesh& m, Index a, Index b, PatchId p,
+                                         double z0, double tol, PatchId& used) {
+  const Vec3d pa = m.positions[a], pb = m.positions[b];
+  const double f = (pa.z - z0) / (pa.z - pb.z);
+  Vec2d corners[2] = {m.vertex_uv[a], m.vertex_uv[b]};
+  if (m.vertex_patch[a] != p || m.vertex_patch[b] != p) {
+    if (m.vertex_patch[b] == p) {
+      corners[0] = corners[1];
+    } else if (m.vertex_patch[a] != p) {
+      p = m.vertex_patch[a];
+    }
+    corners[1] = corners[0];  // a zero segment: refine_plane_edge takes the nearest point
+  }
+  used = p;
+  query::unwrap_corners(domains[p], corners, 2);
+  return query::refine_plane_edge(patches[p].surface, domains[p], {0, 0, 1}, {0, 0, z0},
+                                  corners[0], corners[1], f, pa + f * (pb - pa), tol);
+}
+
+}  // namespace
+
+WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMesh& mesh,
+                                const WaterplaneCutOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t nv = mesh.vertex_count();
+  if (mesh.vertex_uv.size() != nv || mesh.vertex_patch.size() != nv) {
+    throw GeometryError("waterplane cut: the mesh has no (u, v) per vertex");
+  }
+  BBox3d box;
+  for (const Vec3d& p : mesh.positions) box.add(p);
+  const double length = std::max(norm(box.extent()), 1e-300);
+  const double tol = 1e-9 * length;
+  const double z0 = options.waterline_z;
+
+  std::vector<query::ParamDomain> domains(patches.size());
+  parallel_for_each_item(patches.size(), [&](std::size_t p) {
+    domains[p] = query::make_domain(patches[p].surface, tol);
+  });
+
+  // Collect and snap: each vertex writes its own slot.
+  WaterplaneCut out;
+  SurfaceMesh& m = out.mesh;
+  m.positions = mesh.positions;
+  m.vertex_uv = mesh.vertex_uv;
+  m.vertex_patch = mesh.vertex_patch;
+  std::vector<std::uint8_t> snapped(nv, 0);
+  if (options.snap_fraction > 0) {
+    const SnapFacts facts = snap_facts(mesh);
+    auto near = [&](Index v) {
+      const double d = mesh.positions[v].z - z0;
+      return d != 0 && std::abs(d) < options.snap_fraction * facts.shortest[v];
+    };
+    // A vertex on a line slides along one of its line edges that crosses the plane, to the
+    // crossing, so the line stays where it is. Decided on the input positions; of two neighbours
+    // that could slide to the same crossing, only the nearer to the plane does.
+    std::vector<std::pair<Index, Index>> slides;  // (vertex, along the edge to)
+    for (const auto& [a, b] : facts.line_edges) {
+      const double da = mesh.positions[a].z - z0, db = mesh.positions[b].z - z0;
+      if (da * db >= 0) continue;
+      const bool a_first = std::abs(da) < std::abs(db) || (std::abs(da) == std::abs(db) && a < b);
+      const Index v = a_first ? a : b, w = a_first ? b : a;
+      if (near(v)) slides.emplace_back(v, w);
+    }
+    std::sort(slides.begin(), slides.end());
+    std::vector<query::RefinedPlanePoint> to(slides.size());
+    parallel_for(0, slides.size(), [&](std::size_t i) {
+      const Index v = slides[i].first;
+      PatchId used = 0;
+      to[i] = refine_crossing(patches, domains, mesh, v, slides[i].second, mesh.vertex_patch[v],
+                              z0, tol, used);
+    });
+    for (std::size_t i = 0; i < slides.size(); ++i) {
+      const Index v = slides[i].first;
+      // A vertex with two crossing line edges takes the first (lowest neighbour) that converged
+      // within half its shortest edge.
+      if (snapped[v] || !to[i].converged ||
+          norm(to[i].point - mesh.positions[v]) > 0.5 * facts.shortest[v]) {
+        continue;
+      }
+      m.positions[v] = {to[i].point.x, to[i].point.y, z0};
+      m.vertex_uv[v] = to[i].uv;
+      snapped[v] = 1;
+    }
+    // A vertex inside one smooth patch moves along it: each writes its own slot.
+    parallel_for(0, nv, [&](std::size_t v) {
+      if (!facts.movable[v] || !near(static_cast<Index>(v))) return;
+      const PatchId p = m.vertex_patch[v];
+      Vec2d uv = m.vertex_uv[v];
+      Vec3d pos = m.positions[v];
+      if (snap_onto_plane(patches[p].surface, domains[p], z0, tol, 0.5 * facts.shortest[v], uv,
+                          pos)) {
+        m.positions[v] = {pos.x, pos.y, z0};
+        m.vertex_uv[v] = uv;
+        snapped[v] = 1;
+      }
+    });
+  }
+  auto side = [&](Index v) {
+    const double d = m.positions[v].z - z0;
+    return d > 0 ? 1 : (d < 0 ? -1 : 0);
+  };
+
+  // Crossing edges (one corner strictly below, the other strictly above), sorted and unique, so
+  // that both faces of an edge share its new vertex.
+  // Each with the lowest patch among its faces, the patch its new vertex is refined on.
+  std::vector<std::pair<std::uint64_t, PatchId>> cut_edges;
+  std::array<std::array<Index, 3>, 2> tris;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const int n = face_triangles(mesh.faces[f], tris);
+    for (int t = 0; t < n; ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const Index a = tris[t][k], b = tris[t][(k + 1) % 3];
+        if (side(a) * side(b) < 0) {
+          cut_edges.push_back(
+              {(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), mesh.face_patch[f]});
+        }
+      }
+    }
+  }
+  std::sort(cut_edges.begin(), cut_edges.end());
+  cut_edges.erase(std::unique(cut_edges.begin(), cut_edges.end(),
+                              [](const auto& x, const auto& y) { return x.first == y.first; }),
+                  cut_edges.end());
+
+  // Refine each crossing onto the NURBS, in parallel, own slots.
+  const Index first_new = static_cast<Index>(nv);
+  m.positions.resize(nv + cut_edges.size());
+  m.vertex_uv.resize(nv + cut_edges.size());
+  m.vertex_patch.resize(nv + cut_edges.size());
+  std::vector<std::uint8_t> missed(cut_edges.size(), 0);
+  parallel_for(0, cut_edges.size(), [&](std::size_t e) {
+    const Index a = static_cast<Index>(cut_edges[e].first >> 32);
+    const Index b = static_cast<Index>(cut_edges[e].first & 0xffffffffu);
+    PatchId used = 0;
+    const query::RefinedPlanePoint r =
+        refine_crossing(patches, domains, m, a, b, cut_edges[e].second, z0, tol, used);
+    missed[e] = !r.converged;
+    m.positions[first_new + e] = {r.point.x, r.point.y, z0};
+    m.vertex_uv[first_new + e] = r.uv;
+    m.vertex_patch[first_new + e] = used;
+  });
+  auto cut_vertex = [&](Index a, Index b) {
+    const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+    const auto it =
+        std::lower_bound(cut_edges.begin(), cut_edges.end(), key,
+                         [](const auto& entry, std::uint64_t k) { return entry.first < k; });
+    return first_new + static_cast<Index>(it - cut_edges.begin());
+  };
+
+  // Split: in face order, each input face gives its kept triangles in a fixed order.
+  const bool blocks = mesh.face_block.size() == mesh.faces.size();
+  auto emit = [&](std::size_t f, Index a, Index b, Index c) {
+    m.faces.push_back({a, b, c, kInvalid});
+    m.face_patch.push_back(mesh.face_patch[f]);
+    if (blocks) m.face_block.push_back(mesh.face_block[f]);
+    out.face_new2old.push_back(static_cast<Index>(f));
+  };
+  WaterplaneCutReport& r = out.report;
+  r.faces_in = mesh.faces.size();
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const int n = face_triangles(mesh.faces[f], tris);
+    bool any_above = false, any_below = false;
+    for (int t = 0; t < n; ++t) {
+      for (Index v : tris[t]) {
+        any_above |= side(v) > 0;
+        any_below |= side(v) < 0;
+      }
+    }
+    if (!any_below) continue;  // above or in the plane: dry
+    if (!any_above) {
+      // Wholly wet: kept as it is (a quad stays a quad).
+      m.faces.push_back(mesh.faces[f]);
+      m.face_patch.push_back(mesh.face_patch[f]);
+      if (blocks) m.face_block.push_back(mesh.face_block[f]);
+      out.face_new2old.push_back(static_cast<Index>(f));
+      continue;
+    }
+    ++r.faces_split;
+    for (int t = 0; t < n; ++t) {
+      const auto& c = tris[t];
+      const int s[3] = {side(c[0]), side(c[1]), side(c[2])};
+      if (s[0] >= 0 && s[1] >= 0 && s[2] >= 0) continue;
+      if (s[0] <= 0 && s[1] <= 0 && s[2] <= 0) {
+        emit(f, c[0], c[1], c[2]);
+        continue;
+      }
+      // Walk the triangle's boundary in order and keep the polygon at or below the plane: the
+      // corners with side <= 0 and the crossing of every edge that changes sign. It has 3 or 4
+      // corners, in the triangle's winding.
+      Index poly[4];
+      int count = 0;
+      for (int k = 0; k < 3; ++k) {
+        const int k1 = (k + 1) % 3;
+        if (s[k] <= 0) poly[count++] = c[k];
+        if (s[k] * s[k1] < 0) poly[count++] = cut_vertex(c[k], c[k1]);
+      }
+      if (count == 3) {
+        emit(f, poly[0], poly[1], poly[2]);
+      } else {
+        // Split the quad along its shorter diagonal.
+        const auto& x = m.positions;
+        const bool d02 = squared_norm(x[poly[2]] - x[poly[0]]) <=
+                         squared_norm(x[poly[3]] - x[poly[1]]);
+        if (d02) {
+          emit(f, poly[0], poly[1], poly[2]);
+          emit(f, poly[0], poly[2], poly[3]);
+        } else {
+          emit(f, poly[0], poly[1], poly[3]);
+          emit(f, poly[1], poly[2], poly[3]);
+        }
+      }
+    }
+  }
+  r.faces_kept = m.faces.size();
+  r.edges_cut = cut_edges.size();
+  for (std::uint8_t s : snapped) r.vertices_snapped += s;
+  for (std::uint8_t s : missed) r.unconverged += s;
+
+  // Compact: the vertices the kept faces use, in their old order.
+  std::vector<Index> vert_old2new(m.positions.size(), kInvalid);
+  for (const Face& f : m.faces) {
+    for (Index v : f) {
+      if (v != kInvalid) vert_old2new[v] = 0;
+    }
+  }
+  Index next = 0;
+  for (Index& v : vert_old2new) {
+    if (v != kInvalid) v = next++;
+  }
+  SurfaceMesh compact;
+  compact.positions.resize(next);
+  compact.vertex_uv.resize(next);
+  compact.vertex_patch.resize(next);
+  for (std::size_t v = 0; v < vert_old2new.size(); ++v) {
+    const Index to = vert_old2new[v];
+    if (to == kInvalid) continue;
+    compact.positions[to] = m.positions[v];
+    compact.vertex_uv[to] = m.vertex_uv[v];
+    compact.vertex_patch[to] = m.vertex_patch[v];
+  }
+  for (Face& f : m.faces) {
+    for (Index& v : f) {
+      if (v != kInvalid) v = vert_old2new[v];
+    }
+  }
+  compact.faces = std::move(m.faces);
+  compact.face_patch = std::move(m.face_patch);
+  compact.face_block = std::move(m.face_block);
+  m = std::move(compact);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace hm

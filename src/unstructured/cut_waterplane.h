@@ -1,0 +1,51 @@
+// The merged fine surface cut at the waterplane before it is coarsened, so that the waterline is
+// a mesh border from the start and the panels made from it end exactly on it (a finished mesh is
+// never clipped). Only the wetted part, below the plane, is kept. The cut comes after the merge:
+// on the merged surface an edge at a patch border is one edge, so both patches share its new
+// vertex and the waterline stays one conforming line across patch borders.
+//
+// Frame: the floating frame (the caller has placed the patches at their draft, trim and heel),
+// metres; the waterplane is z = waterline_z. Every vertex the cut makes lies on the NURBS
+// (refined in double precision) and on the plane exactly (z = waterline_z).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+#include "mesh/surface_mesh.h"
+#include "nurbs/patch.h"
+
+namespace hm {
+
+struct WaterplaneCutOptions {
+  double waterline_z = 0;
+  // A vertex closer to the plane than this fraction of its shortest edge is moved onto it first,
+  // so that the cut leaves no sliver (the move is at most half that edge, so no triangle folds).
+  // A vertex inside one smooth patch moves along the patch; a vertex on a line (the mesh
+  // boundary, a patch border, a knuckle) slides along the line to where it crosses the plane, so
+  // the line stays where it is. 0: no snapping.
+  double snap_fraction = 0.3;
+};
+
+struct WaterplaneCutReport {
+  std::size_t faces_in = 0, faces_kept = 0, faces_split = 0;
+  std::size_t vertices_snapped = 0;  // moved onto the plane along their patch or line
+  std::size_t edges_cut = 0;         // new vertices on the waterline
+  std::size_t unconverged = 0;       // new vertices whose refinement missed its tolerance
+  double seconds = 0;
+};
+
+struct WaterplaneCut {
+  SurfaceMesh mesh;                 // triangles; vertex_patch and vertex_uv kept and extended
+  std::vector<Index> face_new2old;  // the input face each output face comes from
+  WaterplaneCutReport report;
+};
+
+// mesh: a surface over `patches` with each vertex's patch and (u, v) (the merged surface, or a
+// tessellation); quads are cut as triangles 0-1-2 and 0-2-3. Faces keep their patch. Throws
+// GeometryError when the mesh lacks vertex (u, v).
+WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMesh& mesh,
+                                const WaterplaneCutOptions& options);
+
+}  // namespace hm
