@@ -6,6 +6,7 @@
 // positions, move split vertices halfway onto the edge, replace each split triangle by a fan.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/parallel.h"
@@ -155,6 +156,24 @@ SnapStats snap_borders(Work& w, const MergeOptions& options, double length) {
     double distance;
   };
   std::vector<Insert> inserts;
+  // The mesh's edges at border vertices, once per face using them, as they will be once the
+  // welds are applied (sorted vertex pairs), to test a split against.
+  const auto welded = [&](Index v) { return local[v] == kInvalid ? v : b.vertices[rep[local[v]]]; };
+  std::vector<std::uint64_t> border_links;
+  for (const Face& f : m.faces) {
+    for (int c = 0; c < 3; ++c) {
+      const Index u = f[c], v = f[(c + 1) % 3];
+      if (local[u] == kInvalid && local[v] == kInvalid) continue;
+      const Index wu = welded(u), wv = welded(v);
+      border_links.push_back((std::uint64_t{std::min(wu, wv)} << 32) | std::max(wu, wv));
+    }
+  }
+  std::sort(border_links.begin(), border_links.end());
+  const auto faces_at = [&](Index u, Index v) {
+    const std::uint64_t key = (std::uint64_t{std::min(u, v)} << 32) | std::max(u, v);
+    const auto range = std::equal_range(border_links.begin(), border_links.end(), key);
+    return range.second - range.first;
+  };
   for (std::size_t i = 0; i < nb; ++i) {
     const Split& s = near[i];
     if (s.edge == kInvalid) continue;
@@ -162,6 +181,12 @@ SnapStats snap_borders(Work& w, const MergeOptions& options, double length) {
     if (in_cluster(i, e.patch)) continue;
     const Index r = rep[i];
     if (rep[local[e.v0]] == r || rep[local[e.v1]] == r) continue;
+    // The split gives the edges from the vertex to both ends one more face. Where the welds have
+    // already made such an edge interior (two faces: the vertex's neighbour on its own patch
+    // welded to that end), it would get a third.
+    if (faces_at(b.vertices[r], welded(e.v0)) >= 2 || faces_at(b.vertices[r], welded(e.v1)) >= 2) {
+      continue;
+    }
     inserts.push_back({s.edge, s.t, r, s.distance});
   }
   // A cluster enters each other patch's border once, at its nearest edge: two members near one

@@ -77,6 +77,15 @@ TEST(Merge, CleanMultiPatchHullsBecomeOneSurface) {
   }
 }
 
+// 300 round-bilge patches at 40,000 triangles: near the keel, a border vertex one short edge
+// from a patch corner was split into the next patch's border edge at that corner while its own
+// neighbour was already welded there, giving an edge a third face (found by compare-peers).
+TEST(Merge, ManySmallPatchesMeetAtTheCentrePlaneWithoutAThirdFace) {
+  const std::vector<Patch> patches = generated(HullKind::kRoundBilge, 300).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 40000));
+  expect_clean_half_hull(m, "round-bilge, 300 patches");
+}
+
 TEST(Merge, ClosesGapsOfOneThousandthOfTheLength) {
   HullDefects d;
   d.gap = 0.1;  // 1e-3 L
