@@ -1,6 +1,8 @@
 // hullmesh unstructured FILE -o panels.gdf --panels 4000: the paper's unstructured path. Import,
 // tessellate fine, merge into one hull, find knuckles and boundaries, coarsen by edge collapse
 // under the weighted quality index, and report the panels against the panel-code rules.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -13,15 +15,17 @@
 #include "cli/commands.h"
 #include "cli/floating_options.h"
 #include "cli/load_hull.h"
+#include "core/bbox.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
 #include "mesh/adjacency.h"
+#include "mesh/mirror_mesh.h"
 #include "quality/hydrostatics.h"
 #include "quality/quality_report.h"
 #include "query/hull_query.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/coarsen.h"
-#include "unstructured/cut_waterplane.h"
+#include "unstructured/cut_at_plane.h"
 #include "unstructured/features.h"
 #include "unstructured/measure_deviation.h"
 #include "unstructured/merge.h"
@@ -44,7 +48,25 @@ struct UnstructuredCommand {
   std::string weights;
   std::vector<std::string> point_sources, line_sources, box_sources;
   FloatingArgs floating;
+  std::string symmetry = "auto";
 };
+
+double hull_length(const SurfaceMesh& m) {
+  BBox3d box;
+  for (const Vec3d& p : m.positions) box.add(p);
+  const Vec3d e = box.extent();
+  return std::max({e.x, e.y, e.z});
+}
+
+// A half hull: no vertex beyond tol on one of the two sides of y = 0.
+bool on_one_side_of_y0(const SurfaceMesh& m, double tol) {
+  bool port = false, starboard = false;
+  for (const Vec3d& p : m.positions) {
+    port |= p.y > tol;
+    starboard |= p.y < -tol;
+  }
+  return !(port && starboard);
+}
 
 void parse_sources(UnstructuredCommand& c) {
   for (const std::string& s : c.point_sources) {
@@ -96,9 +118,24 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   if (fine_triangles > 0) o.edge_length = edge_length_for_triangles(patches, fine_triangles);
   const Tessellation t = tessellate(patches, o, silent_progress());
   const MergedSurface merged = merge_patches(patches, t.mesh, c.merge, silent_progress());
-  std::optional<WaterplaneCut> cut;
-  if (floating) cut = cut_at_waterplane(patches, merged.mesh, {});
-  const SurfaceMesh& fine = cut ? cut->mesh : merged.mesh;
+  // The cuts before coarsening: the waterplane, then the centre plane when one half of a full
+  // hull is wanted.
+  const double centre_tol = 2e-4 * hull_length(merged.mesh);
+  const bool file_half = on_one_side_of_y0(merged.mesh, centre_tol);
+  const SurfaceMesh* fine_ptr = &merged.mesh;
+  std::optional<PlaneCut> cut, centre_cut;
+  if (floating) {
+    cut = cut_at_plane(patches, *fine_ptr, {});
+    fine_ptr = &cut->mesh;
+  }
+  if (c.symmetry == "half" && !file_half) {
+    PlaneCutOptions co;
+    co.axis = 1;
+    co.keep_below = false;  // the port half, y >= 0
+    centre_cut = cut_at_plane(patches, *fine_ptr, co);
+    fine_ptr = &centre_cut->mesh;
+  }
+  const SurfaceMesh& fine = *fine_ptr;
   const long long t1 = now_ns();
   const EdgeAdjacency adj = build_edge_adjacency(fine.faces, fine.vertex_count());
   check_merged_manifold(c.file, fine, adj, "`hullmesh merge` writes the surface for inspection");
@@ -112,11 +149,27 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   const long long t2 = now_ns();
   const HullQuery query(patches, fine);
   const DeviationMeasure dev = measure_deviation(query, panels_mesh.mesh);
+
+  // The full hull from a half, mirrored after coarsening (so both sides are panelled alike).
+  const SurfaceMesh* output = &panels_mesh.mesh;
+  std::vector<std::array<Index, 2>> knuckle_edges = panels_mesh.feature_edges;
+  std::optional<MirroredMesh> mirrored;
+  if (c.symmetry == "full" && on_one_side_of_y0(panels_mesh.mesh, centre_tol)) {
+    mirrored = mirror_half_hull(panels_mesh.mesh, centre_tol);
+    output = &mirrored->mesh;
+    std::vector<Index> twin(panels_mesh.mesh.vertex_count());
+    for (std::size_t v = 0; v < twin.size(); ++v) twin[v] = static_cast<Index>(v);
+    for (std::size_t v = twin.size(); v < mirrored->vert_new2old.size(); ++v) {
+      twin[mirrored->vert_new2old[v]] = static_cast<Index>(v);
+    }
+    for (const auto& [a, b] : panels_mesh.feature_edges)
+      knuckle_edges.push_back({twin[a], twin[b]});
+  }
   QualityOptions qo;
-  qo.knuckle_edges = panels_mesh.feature_edges;
+  qo.knuckle_edges = knuckle_edges;
   qo.rules.min_triangle_angle_share = 0;
   if (floating) qo.waterline_z = 0;
-  const QualityReport quality = assess_quality(panels_mesh.mesh, qo);
+  const QualityReport quality = assess_quality(*output, qo);
   // The mesh's hydrostatics against the exact NURBS at the same position: the direct measure of
   // the panels' geometric accuracy.
   std::optional<Hydrostatics> hydro_mesh, hydro_nurbs;
@@ -124,24 +177,42 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
     FloatingPosition position;
     position.waterline_z = 0;
     position.half_hull = quality.half_hull;
-    hydro_mesh = hydrostatics_mesh(panels_mesh.mesh, position);
+    hydro_mesh = hydrostatics_mesh(*output, position);
     // The NURBS integrals follow each patch's declared normal: turn the patches the merge found
     // wound into the hull, as it turned their faces. 1e-9 relative is ample against panels.
     std::vector<Patch> outward(patches.begin(), patches.end());
     for (PatchId p : merged.report.patches_flipped) outward[p].reversed = !outward[p].reversed;
     NurbsHydrostaticsOptions ho;
     ho.rel_tol = 1e-9;
+    position.half_hull = file_half;
     hydro_nurbs = hydrostatics_nurbs(outward, position, ho);
   }
   const double t_report = seconds_since(t2);
 
   MeshWriteOptions w;
   w.info.title = "hullmesh unstructured panels of " + c.file;
-  write_mesh(c.output, panels_mesh.mesh, w);
+  // A half hull goes out with its symmetry flag wherever the format has one (a panel code
+  // would otherwise take it for half a ship).
+  w.info.symmetry.about_y0 = quality.half_hull;
+  write_mesh(c.output, *output, w);
 
   if (!g.quiet) {
     std::printf("%s: %zu panels, %zu vertices (from %zu fine triangles)\n", c.output.c_str(),
                 r.panels, r.vertices, r.input_faces);
+    if (mirrored) {
+      std::printf("  mirrored about y = 0: %zu panels, %zu vertices in the full hull\n",
+                  output->face_count(), output->vertex_count());
+    }
+    if (centre_cut) {
+      std::printf(
+          "  centre-plane cut of the fine mesh (the port half of a full hull): %zu faces split, "
+          "%zu vertices snapped, %zu new on y = 0\n",
+          centre_cut->report.faces_split, centre_cut->report.vertices_snapped,
+          centre_cut->report.edges_cut);
+    }
+    std::printf("  symmetry: %s\n", quality.half_hull
+                                        ? "half hull, y = 0 flag written where the format has one"
+                                        : "full hull, no flag");
     if (!r.target_reached) {
       std::printf(
           "  note: stopped above the panel target: no further collapse keeps the "
@@ -163,7 +234,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
         "mean %.3g m\n",
         dev.max, dev.where.x, dev.where.y, dev.where.z, r.max_deviation, dev.mean);
     if (floating) {
-      const WaterplaneCutReport& cr = cut->report;
+      const PlaneCutReport& cr = cut->report;
       std::printf(
           "  floating: draft %.4g m above z = %.4g m, trim %.3g deg, heel %.3g deg (pivot x %.4g "
           "m); output frame: free surface z = 0\n",
@@ -178,13 +249,11 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
       std::printf(
           "  hydrostatics, mesh against NURBS: volume %.6g m^3 (%+.3f%%), wetted area %.6g m^2 "
           "(%+.3f%%), waterplane area %.6g m^2 (%+.3f%%), LCB %.5g m (NURBS %.5g)\n",
-          hydro_mesh->volume, rel(hydro_mesh->volume, hydro_nurbs->volume),
-          hydro_mesh->wetted_area, rel(hydro_mesh->wetted_area, hydro_nurbs->wetted_area),
-          hydro_mesh->waterplane_area,
+          hydro_mesh->volume, rel(hydro_mesh->volume, hydro_nurbs->volume), hydro_mesh->wetted_area,
+          rel(hydro_mesh->wetted_area, hydro_nurbs->wetted_area), hydro_mesh->waterplane_area,
           rel(hydro_mesh->waterplane_area, hydro_nurbs->waterplane_area),
           hydro_mesh->buoyancy_centre.x, hydro_nurbs->buoyancy_centre.x);
-      std::printf("  free edges below the waterline: %zu\n",
-                  quality.topology.free_edges_below);
+      std::printf("  free edges below the waterline: %zu\n", quality.topology.free_edges_below);
     }
     std::printf("  topology: %zu boundary loops, %zu non-manifold edges, orientation %s\n",
                 quality.topology.boundary_loops, quality.topology.nonmanifold_edges,
@@ -253,6 +322,10 @@ void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& a
   cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
       ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
   add_floating_options(cmd, c->floating);
+  cmd->add_option("--symmetry", c->symmetry,
+                  "auto: as the file is (a half hull gets its y = 0 flag); half: keep the port "
+                  "half of a full hull (cut at y = 0 before meshing); full: mirror a half hull")
+      ->check(CLI::IsMember({"auto", "half", "full"}));
   cmd->callback(
       [c, &global, &action] { action = [c, &global] { return run_unstructured(*c, global); }; });
 }

@@ -404,9 +404,9 @@ TEST(CliUnstructured, WigleyAtItsDraftEndsOnTheWaterlineAndConvergesAtSecondOrde
   for (int i = 0; i < 2; ++i) {
     const int panels = i == 0 ? 500 : 2000;
     const fs::path gdf = dir / ("wigley_" + std::to_string(panels) + ".gdf");
-    const auto r = run_hullmesh("unstructured '" + igs.string() + "' -o '" + gdf.string() +
-                                "' --draft 6.25 --triangles 30000 --panels " +
-                                std::to_string(panels));
+    const auto r =
+        run_hullmesh("unstructured '" + igs.string() + "' -o '" + gdf.string() +
+                     "' --draft 6.25 --triangles 30000 --panels " + std::to_string(panels));
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NE(r.out.find("free edges below the waterline: 0"), std::string::npos) << r.out;
     const nlohmann::json q = quality_json(gdf);
@@ -447,9 +447,10 @@ TEST(CliUnstructured, Dtmb5415AtItsDesignDraftMatchesTheNurbsHydrostatics) {
                               "' --waterline-z 0 --panels 4000");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(r.out, m,
-                                std::regex("volume [0-9.e+-]+ m\\^3 \\(([-+0-9.]+)%\\), wetted area "
-                                           "[0-9.e+-]+ m\\^2 \\(([-+0-9.]+)%\\)")))
+  ASSERT_TRUE(
+      std::regex_search(r.out, m,
+                        std::regex("volume [0-9.e+-]+ m\\^3 \\(([-+0-9.]+)%\\), wetted area "
+                                   "[0-9.e+-]+ m\\^2 \\(([-+0-9.]+)%\\)")))
       << r.out;
   EXPECT_LT(std::abs(std::stod(m[1].str())), 0.5) << r.out;
   EXPECT_LT(std::abs(std::stod(m[2].str())), 0.5) << r.out;
@@ -457,6 +458,54 @@ TEST(CliUnstructured, Dtmb5415AtItsDesignDraftMatchesTheNurbsHydrostatics) {
   EXPECT_EQ(q["topology"]["nonmanifold_edges"].get<int>(), 0);
   EXPECT_EQ(q["zero_area"].get<int>(), 0);
   EXPECT_GT(q["topology"]["waterline_edges"].get<int>(), 20);
+}
+
+// The third line of a WAMIT GDF file: "ISX ISY".
+std::string gdf_symmetry(const fs::path& gdf) {
+  std::ifstream in(gdf);
+  std::string line;
+  for (int i = 0; i < 3; ++i) std::getline(in, line);
+  return line.substr(0, line.find("ISX"));
+}
+
+// Symmetry: a half hull goes out with its y = 0 flag; --symmetry full mirrors it (the same
+// volume, no centre-plane edge left open, no flag); --symmetry half keeps the port half of a
+// full hull, flagged.
+TEST(CliUnstructured, SymmetryFlagMirrorAndHalf) {
+  const fs::path dir = test::scratch_dir("cli_unstructured_symmetry");
+  const fs::path half = dir / "half.igs", full = dir / "full.igs";
+  ASSERT_EQ(run_hullmesh("-q generate wigley --patches 4 -o '" + half.string() + "'").exit_code, 0);
+  ASSERT_EQ(
+      run_hullmesh("-q generate wigley --patches 8 --full -o '" + full.string() + "'").exit_code,
+      0);
+  const std::string common = "' --draft 6.25 --triangles 20000 --panels 600 ";
+  const fs::path a = dir / "half.gdf", b = dir / "mirrored.gdf", c = dir / "kept_half.gdf";
+  auto r = run_hullmesh("unstructured '" + half.string() + "' -o '" + a.string() + common);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(gdf_symmetry(a), "0 1   ");
+  r = run_hullmesh("unstructured '" + half.string() + "' -o '" + b.string() + common +
+                   "--symmetry full");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  // A collapse on the boundary removes one face, so the half may stop just under 600.
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("mirrored about y = 0: 1(19[89]|200) panels")))
+      << r.out;
+  EXPECT_EQ(gdf_symmetry(b), "0 0   ");
+  const nlohmann::json qa = quality_json(a), qb = quality_json(b);
+  EXPECT_TRUE(qa["half_hull"].get<bool>());
+  EXPECT_FALSE(qb["half_hull"].get<bool>());
+  EXPECT_EQ(qb["topology"]["centre_plane_edges"].get<int>(), 0);
+  EXPECT_EQ(qb["topology"]["boundary_loops"].get<int>(), 1);  // the waterline alone
+  EXPECT_NEAR(
+      qb["hydrostatics"]["volume_m3"].get<double>() / qa["hydrostatics"]["volume_m3"].get<double>(),
+      1, 1e-12);
+  r = run_hullmesh("unstructured '" + full.string() + "' -o '" + c.string() + common +
+                   "--symmetry half");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(gdf_symmetry(c), "0 1   ");
+  const nlohmann::json qc = quality_json(c);
+  EXPECT_TRUE(qc["half_hull"].get<bool>());
+  EXPECT_NEAR(qc["hydrostatics"]["volume_m3"].get<double>() / (4.0 / 9.0 * 100 * 10 * 6.25), 1,
+              0.02);
 }
 
 TEST(CliUnstructured, ImpossibleFloatingPositionsAreUsageErrors) {

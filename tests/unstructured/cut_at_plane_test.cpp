@@ -1,7 +1,7 @@
-// The waterplane cut of the fine patch triangulation: what stays is the wetted part, the new
-// border lies on the plane and on the NURBS, the cut leaves no sliver, and the wetted area and
-// volume of a generated Wigley hull match its closed forms.
-#include "unstructured/cut_waterplane.h"
+// Cuts of the merged fine surface: at the waterplane what stays is the wetted part, the new border
+// lies on the plane and on the NURBS, the cut leaves no sliver, and the wetted area and volume of
+// a generated Wigley hull match its closed forms; at the centre plane a full hull keeps one half.
+#include "unstructured/cut_at_plane.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
 #include "quality/hydrostatics.h"
-#include "mesh/adjacency.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/merge.h"
 
@@ -23,7 +23,7 @@ struct Cut {
   GeneratedHull hull;
   Tessellation tess;
   MergedSurface merged;
-  WaterplaneCut cut;
+  PlaneCut cut;
 };
 
 Cut cut_wigley(double waterline_z, int patches = 4, double snap = 0.3) {
@@ -35,10 +35,10 @@ Cut cut_wigley(double waterline_z, int patches = 4, double snap = 0.3) {
   o.edge_length = 1.0;  // L / 100
   c.tess = tessellate(c.hull.patches, o, silent_progress());
   c.merged = merge_patches(c.hull.patches, c.tess.mesh, {}, silent_progress());
-  WaterplaneCutOptions co;
-  co.waterline_z = waterline_z;
+  PlaneCutOptions co;
+  co.value = waterline_z;
   co.snap_fraction = snap;
-  c.cut = cut_at_waterplane(c.hull.patches, c.merged.mesh, co);
+  c.cut = cut_at_plane(c.hull.patches, c.merged.mesh, co);
   return c;
 }
 
@@ -59,7 +59,7 @@ std::size_t slivers_at_cut(const SurfaceMesh& m, double z0) {
   return count;
 }
 
-TEST(CutWaterplane, KeepsTheWettedPartWithItsBorderOnThePlaneAndTheNurbs) {
+TEST(CutAtPlane, KeepsTheWettedPartWithItsBorderOnThePlaneAndTheNurbs) {
   const double z0 = 4.1;  // between grid rows of the Wigley (T = 6.25)
   const Cut c = cut_wigley(z0);
   const SurfaceMesh& m = c.cut.mesh;
@@ -75,8 +75,8 @@ TEST(CutWaterplane, KeepsTheWettedPartWithItsBorderOnThePlaneAndTheNurbs) {
     if (p.z != z0) continue;
     ++on_plane;
     // On the patch's surface at its (u, v), to round-off (L = 100 m).
-    const Vec3d s = evaluate(c.hull.patches[m.vertex_patch[v]].surface, m.vertex_uv[v].x,
-                             m.vertex_uv[v].y);
+    const Vec3d s =
+        evaluate(c.hull.patches[m.vertex_patch[v]].surface, m.vertex_uv[v].x, m.vertex_uv[v].y);
     EXPECT_NEAR(norm(s - p), 0, 1e-7) << "vertex " << v;
   }
   EXPECT_GE(on_plane, c.cut.report.edges_cut);
@@ -90,7 +90,7 @@ TEST(CutWaterplane, KeepsTheWettedPartWithItsBorderOnThePlaneAndTheNurbs) {
   EXPECT_EQ(adj.boundary_loops.size(), 1u);
 }
 
-TEST(CutWaterplane, SnappingLeavesNoSliverWhereTheLoopWouldMakeOne) {
+TEST(CutAtPlane, SnappingLeavesNoSliverWhereTheLoopWouldMakeOne) {
   // A waterplane 0.1 mm above a row of grid vertices: cutting the row's triangles as they are
   // makes a sliver at every vertex of the row.
   const Cut probe = cut_wigley(4.1);
@@ -115,7 +115,7 @@ TEST(CutWaterplane, SnappingLeavesNoSliverWhereTheLoopWouldMakeOne) {
   EXPECT_LE(slivers, 12u) << "of " << raw_slivers << " without snapping";
 }
 
-TEST(CutWaterplane, WigleyWettedAreaAndVolumeMatchTheClosedForm) {
+TEST(CutAtPlane, WigleyWettedAreaAndVolumeMatchTheClosedForm) {
   // At the design draft the kept part is the Wigley hull's wetted surface (half hull). The
   // triangles are within the chord tolerance (1e-4 L = 1 cm) of the surface, which bounds the
   // area error near 1e-3 and the volume error near that times wetted area over volume (3e-3).
@@ -130,7 +130,7 @@ TEST(CutWaterplane, WigleyWettedAreaAndVolumeMatchTheClosedForm) {
   EXPECT_NEAR(h.volume / c.hull.facts.displacement_volume, 1, 3e-3);
 }
 
-TEST(CutWaterplane, SameArraysWithOneAndTwoThreads) {
+TEST(CutAtPlane, SameArraysWithOneAndTwoThreads) {
   Cut one, two;
   {
     tbb::global_control g(tbb::global_control::max_allowed_parallelism, 1);
@@ -145,11 +145,89 @@ TEST(CutWaterplane, SameArraysWithOneAndTwoThreads) {
   EXPECT_EQ(one.cut.mesh.vertex_uv, two.cut.mesh.vertex_uv);
 }
 
-TEST(CutWaterplane, NeedsVertexParameters) {
+// A full Wigley hull's halves meet at y = 0 (keel, stem and stern lie in the centre plane), so the
+// centre-plane cut keeps the port half exactly, with the centre plane as its open side.
+TEST(CutAtPlane, CentrePlaneKeepsThePortHalfOfAFullHull) {
+  HullSpec spec;
+  spec.kind = HullKind::kWigley;
+  spec.patches = 8;
+  spec.full_hull = true;
+  const GeneratedHull hull = generate_hull(spec);
+  TessellateOptions o;
+  o.edge_length = 1.0;
+  const Tessellation tess = tessellate(hull.patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(hull.patches, tess.mesh, {}, silent_progress());
+  PlaneCutOptions co;
+  co.axis = 1;
+  co.value = 0;
+  co.keep_below = false;
+  {
+    const EdgeAdjacency before =
+        build_edge_adjacency(merged.mesh.faces, merged.mesh.vertex_count());
+    ASSERT_TRUE(before.nonmanifold_edges.empty());
+    ASSERT_TRUE(before.inconsistent_edges.empty());
+  }
+  const PlaneCut cut = cut_at_plane(hull.patches, merged.mesh, co);
+  const SurfaceMesh& m = cut.mesh;
+  double area = 0, full = 0;
+  for (const Face& f : m.faces) area += face_area(m.positions, f);
+  for (const Face& f : merged.mesh.faces) full += face_area(merged.mesh.positions, f);
+  EXPECT_NEAR(area / full, 0.5, 1e-3);
+  for (const Vec3d& p : m.positions) ASSERT_GE(p.y, 0.0);
+  // The open side now includes the centre plane, exactly at y = 0 (the rest is the deck edge).
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(adj.inconsistent_edges.empty());
+  std::size_t on_centre = 0;
+  for (const auto& e : adj.edges) {
+    if (e.uses != 1) continue;
+    on_centre += m.positions[e.v0].y == 0 && m.positions[e.v1].y == 0;
+  }
+  EXPECT_GT(on_centre, 20u);
+}
+
+// The same machinery on another axis, through the middle of a round-bilge hull's patches (a
+// buttock at y = 2 m, keeping the part inboard of it): splits happen, the new border lies on the
+// plane exactly and on the NURBS, and the surface stays manifold.
+TEST(CutAtPlane, AButtockCutSplitsAlongTheYAxisAsTheWaterplaneDoesAlongZ) {
+  HullSpec spec;
+  spec.kind = HullKind::kRoundBilge;
+  spec.patches = 24;
+  const GeneratedHull hull = generate_hull(spec);
+  TessellateOptions o;
+  o.edge_length = 1.0;
+  const Tessellation tess = tessellate(hull.patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(hull.patches, tess.mesh, {}, silent_progress());
+  PlaneCutOptions co;
+  co.axis = 1;
+  co.value = 2.0;
+  const PlaneCut cut = cut_at_plane(hull.patches, merged.mesh, co);
+  const SurfaceMesh& m = cut.mesh;
+  EXPECT_GT(cut.report.faces_split, 50u);
+  EXPECT_EQ(cut.report.unconverged, 0u);
+  std::size_t on_plane = 0;
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+    ASSERT_LE(m.positions[v].y, 2.0);
+    if (m.positions[v].y != 2.0) continue;
+    ++on_plane;
+    const Vec3d s =
+        evaluate(hull.patches[m.vertex_patch[v]].surface, m.vertex_uv[v].x, m.vertex_uv[v].y);
+    EXPECT_NEAR(norm(s - m.positions[v]), 0, 1e-7) << "vertex " << v;
+  }
+  EXPECT_GT(on_plane, 50u);
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(adj.inconsistent_edges.empty());
+}
+
+TEST(CutAtPlane, NeedsVertexParameters) {
   Cut c = cut_wigley(4.1);
   SurfaceMesh bare = c.merged.mesh;
   bare.vertex_uv.clear();
-  EXPECT_THROW(cut_at_waterplane(c.hull.patches, bare, {}), GeometryError);
+  EXPECT_THROW(cut_at_plane(c.hull.patches, bare, {}), GeometryError);
+  PlaneCutOptions bad;
+  bad.axis = 3;
+  EXPECT_THROW(cut_at_plane(c.hull.patches, c.merged.mesh, bad), GeometryError);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Cut: collect the side of every vertex -> snap interior vertices near the plane onto it ->
 // collect the crossing edges and refine each crossing onto its patch -> split the crossed faces,
 // keeping the part below -> compact the vertices.
-#include "unstructured/cut_waterplane.h"
+#include "unstructured/cut_at_plane.h"
 
 #include <algorithm>
 #include <chrono>
@@ -34,8 +34,8 @@ constexpr double kSharpCos = 0.9396926207859084;  // cos 20 degrees
 
 // What the snap needs to know of the mesh's edges.
 struct SnapFacts {
-  std::vector<double> shortest;          // per vertex, its shortest edge (metres)
-  std::vector<std::uint8_t> movable;     // per vertex: no line edge at it, all faces on its patch
+  std::vector<double> shortest;       // per vertex, its shortest edge (metres)
+  std::vector<std::uint8_t> movable;  // per vertex: no line edge at it, all faces on its patch
   std::vector<std::array<Index, 2>> line_edges;  // ascending; see below
 };
 
@@ -52,8 +52,8 @@ SnapFacts snap_facts(const SurfaceMesh& mesh) {
     for (int t = 0; t < n; ++t) {
       for (int k = 0; k < 3; ++k) {
         const Index a = tris[t][k], b = tris[t][(k + 1) % 3];
-        uses.push_back({(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b),
-                        static_cast<Index>(f)});
+        uses.push_back(
+            {(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), static_cast<Index>(f)});
         if (mesh.vertex_patch[a] != mesh.face_patch[f]) facts.movable[a] = 0;
       }
     }
@@ -85,22 +85,34 @@ SnapFacts snap_facts(const SurfaceMesh& mesh) {
   return facts;
 }
 
-// Newton on g(u, v) = S(u, v).z - z0 along the gradient of g in (u, v): the nearest parameter
-// step that puts the point on the plane. Returns false when it does not converge or would leave
-// the domain or move the point farther than max_move.
-bool snap_onto_plane(const NurbsSurface& s, const query::ParamDomain& d, double z0, double tol,
-                     double max_move, Vec2d& uv, Vec3d& p) {
+// The cut plane x[axis] = value; side() is positive on the side that is dropped.
+struct AxisPlane {
+  int axis = 2;
+  double value = 0;
+  double sign = 1;  // +1: keep below the value, -1: keep above it
+  double side(const Vec3d& p) const { return sign * (p[axis] - value); }
+  Vec3d on_plane(Vec3d p) const {
+    p[axis] = value;
+    return p;
+  }
+};
+
+// Newton on g(u, v) = S(u, v)[axis] - value along the gradient of g in (u, v): the nearest
+// parameter step that puts the point on the plane. Returns false when it does not converge or
+// would leave the domain or move the point farther than max_move.
+bool snap_onto_plane(const NurbsSurface& s, const query::ParamDomain& d, const AxisPlane& plane,
+                     double tol, double max_move, Vec2d& uv, Vec3d& p) {
   Vec2d x = uv;
   for (int it = 0; it < kSnapNewton; ++it) {
     const SurfaceDerivs dv = evaluate_derivs(s, x.x, x.y, 1);
-    const double g = dv.p.z - z0;
+    const double g = dv.p[plane.axis] - plane.value;
     if (std::abs(g) <= tol) {
       if (norm(dv.p - p) > max_move) return false;
       uv = x;
       p = dv.p;
       return true;
     }
-    const Vec2d grad{dv.su.z, dv.sv.z};
+    const Vec2d grad{dv.su[plane.axis], dv.sv[plane.axis]};
     const double g2 = dot(grad, grad);
     if (!(g2 > 0)) return false;
     const Vec2d next = x - (g / g2) * grad;
@@ -110,16 +122,16 @@ bool snap_onto_plane(const NurbsSurface& s, const query::ParamDomain& d, double 
   return false;
 }
 
-// The crossing of edge (a, b) with the plane z = z0, on patch p's NURBS (a patch of a face at
+// The crossing of edge (a, b) with the plane, on patch p's NURBS (a patch of a face at
 // the edge): along the edge's parameter segment when both corners name p; otherwise the point of
 // the section curve nearest the linear crossing, from the corner that names p (or from a on a's
 // patch when neither does).
 query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
                                          std::span<const query::ParamDomain> domains,
                                          const SurfaceMesh& m, Index a, Index b, PatchId p,
-                                         double z0, double tol, PatchId& used) {
+                                         const AxisPlane& plane, double tol, PatchId& used) {
   const Vec3d pa = m.positions[a], pb = m.positions[b];
-  const double f = (pa.z - z0) / (pa.z - pb.z);
+  const double f = plane.side(pa) / (plane.side(pa) - plane.side(pb));
   Vec2d corners[2] = {m.vertex_uv[a], m.vertex_uv[b]};
   if (m.vertex_patch[a] != p || m.vertex_patch[b] != p) {
     if (m.vertex_patch[b] == p) {
@@ -131,24 +143,29 @@ query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
   }
   used = p;
   query::unwrap_corners(domains[p], corners, 2);
-  return query::refine_plane_edge(patches[p].surface, domains[p], {0, 0, 1}, {0, 0, z0},
+  Vec3d normal;
+  normal[plane.axis] = 1;
+  return query::refine_plane_edge(patches[p].surface, domains[p], normal, plane.on_plane(pa),
                                   corners[0], corners[1], f, pa + f * (pb - pa), tol);
 }
 
 }  // namespace
 
-WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMesh& mesh,
-                                const WaterplaneCutOptions& options) {
+PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
+                      const PlaneCutOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t nv = mesh.vertex_count();
   if (mesh.vertex_uv.size() != nv || mesh.vertex_patch.size() != nv) {
-    throw GeometryError("waterplane cut: the mesh has no (u, v) per vertex");
+    throw GeometryError("plane cut: the mesh has no (u, v) per vertex");
   }
   BBox3d box;
   for (const Vec3d& p : mesh.positions) box.add(p);
   const double length = std::max(norm(box.extent()), 1e-300);
   const double tol = 1e-9 * length;
-  const double z0 = options.waterline_z;
+  if (options.axis < 0 || options.axis > 2) {
+    throw GeometryError("plane cut: the axis must be 0 (x), 1 (y) or 2 (z)");
+  }
+  const AxisPlane plane{options.axis, options.value, options.keep_below ? 1.0 : -1.0};
 
   std::vector<query::ParamDomain> domains(patches.size());
   parallel_for_each_item(patches.size(), [&](std::size_t p) {
@@ -156,7 +173,7 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
   });
 
   // Collect and snap: each vertex writes its own slot.
-  WaterplaneCut out;
+  PlaneCut out;
   SurfaceMesh& m = out.mesh;
   m.positions = mesh.positions;
   m.vertex_uv = mesh.vertex_uv;
@@ -165,7 +182,7 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
   if (options.snap_fraction > 0) {
     const SnapFacts facts = snap_facts(mesh);
     auto near = [&](Index v) {
-      const double d = mesh.positions[v].z - z0;
+      const double d = plane.side(mesh.positions[v]);
       return d != 0 && std::abs(d) < options.snap_fraction * facts.shortest[v];
     };
     // A vertex on a line slides along one of its line edges that crosses the plane, to the
@@ -173,7 +190,7 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
     // that could slide to the same crossing, only the nearer to the plane does.
     std::vector<std::pair<Index, Index>> slides;  // (vertex, along the edge to)
     for (const auto& [a, b] : facts.line_edges) {
-      const double da = mesh.positions[a].z - z0, db = mesh.positions[b].z - z0;
+      const double da = plane.side(mesh.positions[a]), db = plane.side(mesh.positions[b]);
       if (da * db >= 0) continue;
       const bool a_first = std::abs(da) < std::abs(db) || (std::abs(da) == std::abs(db) && a < b);
       const Index v = a_first ? a : b, w = a_first ? b : a;
@@ -185,7 +202,7 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
       const Index v = slides[i].first;
       PatchId used = 0;
       to[i] = refine_crossing(patches, domains, mesh, v, slides[i].second, mesh.vertex_patch[v],
-                              z0, tol, used);
+                              plane, tol, used);
     });
     for (std::size_t i = 0; i < slides.size(); ++i) {
       const Index v = slides[i].first;
@@ -195,7 +212,7 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
           norm(to[i].point - mesh.positions[v]) > 0.5 * facts.shortest[v]) {
         continue;
       }
-      m.positions[v] = {to[i].point.x, to[i].point.y, z0};
+      m.positions[v] = plane.on_plane(to[i].point);
       m.vertex_uv[v] = to[i].uv;
       snapped[v] = 1;
     }
@@ -205,16 +222,16 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
       const PatchId p = m.vertex_patch[v];
       Vec2d uv = m.vertex_uv[v];
       Vec3d pos = m.positions[v];
-      if (snap_onto_plane(patches[p].surface, domains[p], z0, tol, 0.5 * facts.shortest[v], uv,
+      if (snap_onto_plane(patches[p].surface, domains[p], plane, tol, 0.5 * facts.shortest[v], uv,
                           pos)) {
-        m.positions[v] = {pos.x, pos.y, z0};
+        m.positions[v] = plane.on_plane(pos);
         m.vertex_uv[v] = uv;
         snapped[v] = 1;
       }
     });
   }
   auto side = [&](Index v) {
-    const double d = m.positions[v].z - z0;
+    const double d = plane.side(m.positions[v]);
     return d > 0 ? 1 : (d < 0 ? -1 : 0);
   };
 
@@ -251,9 +268,9 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
     const Index b = static_cast<Index>(cut_edges[e].first & 0xffffffffu);
     PatchId used = 0;
     const query::RefinedPlanePoint r =
-        refine_crossing(patches, domains, m, a, b, cut_edges[e].second, z0, tol, used);
+        refine_crossing(patches, domains, m, a, b, cut_edges[e].second, plane, tol, used);
     missed[e] = !r.converged;
-    m.positions[first_new + e] = {r.point.x, r.point.y, z0};
+    m.positions[first_new + e] = plane.on_plane(r.point);
     m.vertex_uv[first_new + e] = r.uv;
     m.vertex_patch[first_new + e] = used;
   });
@@ -273,7 +290,7 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
     if (blocks) m.face_block.push_back(mesh.face_block[f]);
     out.face_new2old.push_back(static_cast<Index>(f));
   };
-  WaterplaneCutReport& r = out.report;
+  PlaneCutReport& r = out.report;
   r.faces_in = mesh.faces.size();
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const int n = face_triangles(mesh.faces[f], tris);
@@ -317,8 +334,8 @@ WaterplaneCut cut_at_waterplane(std::span<const Patch> patches, const SurfaceMes
       } else {
         // Split the quad along its shorter diagonal.
         const auto& x = m.positions;
-        const bool d02 = squared_norm(x[poly[2]] - x[poly[0]]) <=
-                         squared_norm(x[poly[3]] - x[poly[1]]);
+        const bool d02 =
+            squared_norm(x[poly[2]] - x[poly[0]]) <= squared_norm(x[poly[3]] - x[poly[1]]);
         if (d02) {
           emit(f, poly[0], poly[1], poly[2]);
           emit(f, poly[0], poly[2], poly[3]);

@@ -1,0 +1,83 @@
+#include "mesh/mirror_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "core/error.h"
+
+namespace hm {
+
+MirroredMesh mirror_half_hull(const SurfaceMesh& half, double on_plane_tol) {
+  const std::size_t nv = half.vertex_count();
+  bool port = false, starboard = false;
+  for (const Vec3d& p : half.positions) {
+    port |= p.y > on_plane_tol;
+    starboard |= p.y < -on_plane_tol;
+  }
+  if (port && starboard) {
+    throw GeometryError("mirror: the mesh has vertices on both sides of y = 0 beyond " +
+                        std::to_string(on_plane_tol) + " m; it is not a half hull");
+  }
+  const bool has_uv = half.vertex_uv.size() == nv && half.vertex_patch.size() == nv;
+  const bool has_blocks = half.face_block.size() == half.face_count();
+
+  MirroredMesh out;
+  SurfaceMesh& m = out.mesh;
+  m = half;
+  out.vert_new2old.resize(nv);
+  for (std::size_t v = 0; v < nv; ++v) out.vert_new2old[v] = static_cast<Index>(v);
+  out.face_new2old.resize(half.face_count());
+  for (std::size_t f = 0; f < half.face_count(); ++f) out.face_new2old[f] = static_cast<Index>(f);
+
+  // Vertices on the open boundary (an edge with one face): only they may be shared. An interior
+  // vertex near y = 0 (a narrow keel) is repeated, or the halves would overlap there.
+  std::vector<std::uint64_t> keys;
+  for (const Face& f : half.faces) {
+    const int n = f[3] == kInvalid ? 3 : 4;
+    for (int k = 0; k < n; ++k) {
+      const Index a = f[k], b = f[(k + 1) % n];
+      keys.push_back((std::uint64_t{std::min(a, b)} << 32) | std::max(a, b));
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint8_t> open(nv, 0);
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i;
+    while (j < keys.size() && keys[j] == keys[i]) ++j;
+    if (j - i == 1) open[keys[i] >> 32] = open[keys[i] & 0xffffffffu] = 1;
+    i = j;
+  }
+
+  // Mirror index of every vertex: itself on the plane, else a new vertex (in vertex order).
+  std::vector<Index> mirror(nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    Vec3d& p = m.positions[v];
+    if (open[v] && std::abs(p.y) <= on_plane_tol) {
+      p.y = 0;
+      mirror[v] = static_cast<Index>(v);
+      continue;
+    }
+    mirror[v] = static_cast<Index>(m.positions.size());
+    m.positions.push_back({p.x, -p.y, p.z});
+    out.vert_new2old.push_back(static_cast<Index>(v));
+    if (has_uv) {
+      m.vertex_patch.push_back(half.vertex_patch[v]);
+      m.vertex_uv.push_back(half.vertex_uv[v]);
+    }
+  }
+  for (std::size_t f = 0; f < half.face_count(); ++f) {
+    const Face& g = half.faces[f];
+    const bool tri = g[3] == kInvalid;
+    Face r = tri ? Face{mirror[g[0]], mirror[g[2]], mirror[g[1]], kInvalid}
+                 : Face{mirror[g[0]], mirror[g[3]], mirror[g[2]], mirror[g[1]]};
+    m.faces.push_back(r);
+    m.face_patch.push_back(half.face_patch[f]);
+    if (has_blocks) m.face_block.push_back(half.face_block[f]);
+    out.face_new2old.push_back(static_cast<Index>(f));
+  }
+  return out;
+}
+
+}  // namespace hm

@@ -1,0 +1,25 @@
+// A half hull mirrored about the centre plane y = 0 into the full hull, for panel codes (or runs)
+// that take no symmetry flag.
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+#include "mesh/surface_mesh.h"
+
+namespace hm {
+
+struct MirroredMesh {
+  SurfaceMesh mesh;                 // the half first, as given, then its mirror image
+  std::vector<Index> vert_new2old;  // the half's vertex each vertex comes from
+  std::vector<Index> face_new2old;  // the half's face each face comes from
+};
+
+// Vertices of the open boundary within on_plane_tol (metres) of y = 0 are set to y = 0 and shared
+// by both halves; the others are repeated with y negated. Mirrored faces run in reverse order (a
+// reflection turns the winding, and reversing it keeps every normal pointing into the fluid). Faces
+// keep their patch and block. Throws GeometryError when vertices lie on both sides of y = 0 beyond
+// the tolerance (not a half hull).
+MirroredMesh mirror_half_hull(const SurfaceMesh& half, double on_plane_tol);
+
+}  // namespace hm
