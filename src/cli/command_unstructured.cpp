@@ -20,6 +20,7 @@
 #include "io/write_mesh.h"
 #include "mesh/adjacency.h"
 #include "mesh/mirror_mesh.h"
+#include "mesh/snap_centre_plane.h"
 #include "quality/hydrostatics.h"
 #include "quality/quality_report.h"
 #include "query/hull_query.h"
@@ -146,18 +147,22 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   const CoarsenedMesh panels_mesh =
       coarsen(patches, fine, adj, features, c.coarsen, silent_progress());
   const CoarsenReport& r = panels_mesh.report;
+  // A half hull's open side exactly on y = 0 (its file may draw it a little off).
+  SurfaceMesh half_panels = panels_mesh.mesh;
+  const std::size_t centre_snapped =
+      file_half || centre_cut ? snap_to_centre_plane(half_panels, centre_tol) : 0;
   const long long t2 = now_ns();
   const HullQuery query(patches, fine);
-  const DeviationMeasure dev = measure_deviation(query, panels_mesh.mesh);
+  const DeviationMeasure dev = measure_deviation(query, half_panels);
 
   // The full hull from a half, mirrored after coarsening (so both sides are panelled alike).
-  const SurfaceMesh* output = &panels_mesh.mesh;
+  const SurfaceMesh* output = &half_panels;
   std::vector<std::array<Index, 2>> knuckle_edges = panels_mesh.feature_edges;
   std::optional<MirroredMesh> mirrored;
-  if (c.symmetry == "full" && on_one_side_of_y0(panels_mesh.mesh, centre_tol)) {
-    mirrored = mirror_half_hull(panels_mesh.mesh, centre_tol);
+  if (c.symmetry == "full" && on_one_side_of_y0(half_panels, centre_tol)) {
+    mirrored = mirror_half_hull(half_panels, centre_tol);
     output = &mirrored->mesh;
-    std::vector<Index> twin(panels_mesh.mesh.vertex_count());
+    std::vector<Index> twin(half_panels.vertex_count());
     for (std::size_t v = 0; v < twin.size(); ++v) twin[v] = static_cast<Index>(v);
     for (std::size_t v = twin.size(); v < mirrored->vert_new2old.size(); ++v) {
       twin[mirrored->vert_new2old[v]] = static_cast<Index>(v);
@@ -209,6 +214,10 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
           "%zu vertices snapped, %zu new on y = 0\n",
           centre_cut->report.faces_split, centre_cut->report.vertices_snapped,
           centre_cut->report.edges_cut);
+    }
+    if (centre_snapped > 0) {
+      std::printf("  %zu vertices of the open side moved onto y = 0 (at most %.3g m)\n",
+                  centre_snapped, centre_tol);
     }
     std::printf("  symmetry: %s\n", quality.half_hull
                                         ? "half hull, y = 0 flag written where the format has one"

@@ -1,0 +1,29 @@
+// The open side of a half hull put on y = 0: only boundary vertices within the tolerance move.
+#include "mesh/snap_centre_plane.h"
+
+#include <gtest/gtest.h>
+
+namespace hm {
+namespace {
+
+TEST(SnapToCentrePlane, MovesOnlyOpenBoundaryVerticesWithinTheTolerance) {
+  // Two triangles sharing the edge 1-2; the open boundary is 0-1, 2-3, 3-0... (every edge but 1-2).
+  SurfaceMesh m;
+  m.positions = {{0, 1e-4, 0}, {1, 2e-3, 0}, {0, 5e-5, 1}, {1, 1, 1}};
+  m.faces = {{0, 1, 2, kInvalid}, {1, 3, 2, kInvalid}};
+  EXPECT_EQ(snap_to_centre_plane(m, 1e-3), 2u);
+  EXPECT_EQ(m.positions[0].y, 0.0);
+  EXPECT_EQ(m.positions[1].y, 2e-3);  // beyond the tolerance
+  EXPECT_EQ(m.positions[2].y, 0.0);
+  EXPECT_EQ(m.positions[3].y, 1.0);
+  EXPECT_EQ(snap_to_centre_plane(m, 1e-3), 0u);  // nothing left to move
+  // An interior vertex near the plane stays: a fan closed around vertex 4.
+  SurfaceMesh fan;
+  fan.positions = {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, {0.5, 1e-5, 0.5}};
+  fan.faces = {{0, 1, 4, kInvalid}, {1, 2, 4, kInvalid}, {2, 3, 4, kInvalid}, {3, 0, 4, kInvalid}};
+  EXPECT_EQ(snap_to_centre_plane(fan, 1e-3), 0u);
+  EXPECT_EQ(fan.positions[4].y, 1e-5);
+}
+
+}  // namespace
+}  // namespace hm
