@@ -35,7 +35,7 @@ TEST_P(GeneratedHullTest, MeetsToleranceAndTopology) {
 INSTANTIATE_TEST_SUITE_P(Kinds, GeneratedHullTest,
                          ::testing::Combine(::testing::Values(HullKind::kWigley, HullKind::kChine,
                                                               HullKind::kRoundBilge),
-                                            ::testing::Values(1, 10, 100)));
+                                            ::testing::Values(1, 10, 100, 1000)));
 
 // Knot values of one direction where the surface is only C0 (multiplicity >= degree), strictly
 // inside the domain: the knuckles of a one-patch hull.
