@@ -207,22 +207,22 @@ void print_goals() {
     double bvh = 1e300, brute = 1e300;
     for (int round = 0; round < 5; ++round) {
       bvh = std::min(bvh, time_ms([&](const Plane& p) {
-        if (mode == 0) {
-          benchmark::DoNotOptimize(s.query->crossed_faces(p));
-        } else {
-          benchmark::DoNotOptimize(s.query->section(p, options));
-        }
-      }));
+                       if (mode == 0) {
+                         benchmark::DoNotOptimize(s.query->crossed_faces(p));
+                       } else {
+                         benchmark::DoNotOptimize(s.query->section(p, options));
+                       }
+                     }));
       brute = std::min(brute, time_ms([&](const Plane& p) {
-        if (mode == 0) {
-          benchmark::DoNotOptimize(s.query->crossed_faces_brute_force(p));
-        } else {
-          benchmark::DoNotOptimize(s.query->section_brute_force(p, options));
-        }
-      }));
+                         if (mode == 0) {
+                           benchmark::DoNotOptimize(s.query->crossed_faces_brute_force(p));
+                         } else {
+                           benchmark::DoNotOptimize(s.query->section_brute_force(p, options));
+                         }
+                       }));
     }
-    const char* what[] = {"search (crossed triangles):", "mesh section (no refining):",
-                          "refined onto the NURBS:"};
+    const char* what[] = {
+        "search (crossed triangles):", "mesh section (no refining):", "refined onto the NURBS:"};
     std::printf("  %-28s BVH %7.3f  brute force %7.3f  BVH %5.1fx faster\n", what[mode], bvh, brute,
                 brute / bvh);
   }

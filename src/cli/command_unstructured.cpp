@@ -147,22 +147,22 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   const CoarsenedMesh panels_mesh =
       coarsen(patches, fine, adj, features, c.coarsen, silent_progress());
   const CoarsenReport& r = panels_mesh.report;
-  // A half hull's open side exactly on y = 0 (its file may draw it a little off).
-  SurfaceMesh half_panels = panels_mesh.mesh;
+  // The panels; a half hull's open side exactly on y = 0 (its file may draw it a little off).
+  SurfaceMesh coarse = panels_mesh.mesh;
   const std::size_t centre_snapped =
-      file_half || centre_cut ? snap_to_centre_plane(half_panels, centre_tol) : 0;
+      file_half || centre_cut ? snap_to_centre_plane(coarse, centre_tol) : 0;
   const long long t2 = now_ns();
   const HullQuery query(patches, fine);
-  const DeviationMeasure dev = measure_deviation(query, half_panels);
+  const DeviationMeasure dev = measure_deviation(query, coarse);
 
   // The full hull from a half, mirrored after coarsening (so both sides are panelled alike).
-  const SurfaceMesh* output = &half_panels;
+  const SurfaceMesh* output = &coarse;
   std::vector<std::array<Index, 2>> knuckle_edges = panels_mesh.feature_edges;
   std::optional<MirroredMesh> mirrored;
-  if (c.symmetry == "full" && on_one_side_of_y0(half_panels, centre_tol)) {
-    mirrored = mirror_half_hull(half_panels, centre_tol);
+  if (c.symmetry == "full" && on_one_side_of_y0(coarse, centre_tol)) {
+    mirrored = mirror_half_hull(coarse, centre_tol);
     output = &mirrored->mesh;
-    std::vector<Index> twin(half_panels.vertex_count());
+    std::vector<Index> twin(coarse.vertex_count());
     for (std::size_t v = 0; v < twin.size(); ++v) twin[v] = static_cast<Index>(v);
     for (std::size_t v = twin.size(); v < mirrored->vert_new2old.size(); ++v) {
       twin[mirrored->vert_new2old[v]] = static_cast<Index>(v);

@@ -94,7 +94,6 @@ bool box_meets_plane(const float* lo, const float* hi, const Vec3d& n, double c)
   return std::abs(centre_dist) <= radius;
 }
 
-
 // Releases the Embree BVH (and with it the builder's nodes) on every path out of build().
 struct BvhHandle {
   RTCBVH bvh = nullptr;

@@ -55,8 +55,8 @@ class PlaneBvh {
     std::uint32_t count[kWidth];
     unsigned child_count = 0;
   };
-  std::vector<Node> nodes_;  // nodes_[0] is the root; empty when there are no triangles
-  std::vector<Index> prims_;                   // per slot
+  std::vector<Node> nodes_;   // nodes_[0] is the root; empty when there are no triangles
+  std::vector<Index> prims_;  // per slot
   std::vector<std::array<Index, 3>> corners_;  // per slot: the triangle's vertex indices
 };
 

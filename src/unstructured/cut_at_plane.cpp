@@ -1,6 +1,6 @@
-// Cut: collect the side of every vertex -> snap interior vertices near the plane onto it ->
-// collect the crossing edges and refine each crossing onto its patch -> split the crossed faces,
-// keeping the part below -> compact the vertices.
+// Cut: collect the side of every vertex -> snap vertices near the plane onto it (along their
+// patch, or along their line) -> collect the crossing edges and refine each crossing onto its
+// patch -> split the crossed faces, keeping the kept side -> compact the vertices.
 #include "unstructured/cut_at_plane.h"
 
 #include <algorithm>
@@ -235,9 +235,8 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
     return d > 0 ? 1 : (d < 0 ? -1 : 0);
   };
 
-  // Crossing edges (one corner strictly below, the other strictly above), sorted and unique, so
-  // that both faces of an edge share its new vertex.
-  // Each with the lowest patch among its faces, the patch its new vertex is refined on.
+  // Crossing edges (one corner strictly on each side), sorted and unique so that both faces of an
+  // edge share its new vertex, each with the lowest patch among its faces (where it is refined).
   std::vector<std::pair<std::uint64_t, PatchId>> cut_edges;
   std::array<std::array<Index, 3>, 2> tris;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {

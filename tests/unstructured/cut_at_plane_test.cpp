@@ -26,20 +26,25 @@ struct Cut {
   PlaneCut cut;
 };
 
-Cut cut_wigley(double waterline_z, int patches = 4, double snap = 0.3) {
-  HullSpec spec;
-  spec.kind = HullKind::kWigley;
-  spec.patches = patches;
+// A generated hull tessellated at L / 100, merged, and cut.
+Cut cut_hull(const HullSpec& spec, const PlaneCutOptions& options) {
   Cut c{generate_hull(spec), {}, {}, {}};
   TessellateOptions o;
   o.edge_length = 1.0;  // L / 100
   c.tess = tessellate(c.hull.patches, o, silent_progress());
   c.merged = merge_patches(c.hull.patches, c.tess.mesh, {}, silent_progress());
+  c.cut = cut_at_plane(c.hull.patches, c.merged.mesh, options);
+  return c;
+}
+
+Cut cut_wigley(double waterline_z, int patches = 4, double snap = 0.3) {
+  HullSpec spec;
+  spec.kind = HullKind::kWigley;
+  spec.patches = patches;
   PlaneCutOptions co;
   co.value = waterline_z;
   co.snap_fraction = snap;
-  c.cut = cut_at_plane(c.hull.patches, c.merged.mesh, co);
-  return c;
+  return cut_hull(spec, co);
 }
 
 // Triangles with a corner on the plane z = z0 whose area over squared longest side is under 1e-3
@@ -152,26 +157,19 @@ TEST(CutAtPlane, CentrePlaneKeepsThePortHalfOfAFullHull) {
   spec.kind = HullKind::kWigley;
   spec.patches = 8;
   spec.full_hull = true;
-  const GeneratedHull hull = generate_hull(spec);
-  TessellateOptions o;
-  o.edge_length = 1.0;
-  const Tessellation tess = tessellate(hull.patches, o, silent_progress());
-  const MergedSurface merged = merge_patches(hull.patches, tess.mesh, {}, silent_progress());
   PlaneCutOptions co;
   co.axis = 1;
   co.value = 0;
   co.keep_below = false;
-  {
-    const EdgeAdjacency before =
-        build_edge_adjacency(merged.mesh.faces, merged.mesh.vertex_count());
-    ASSERT_TRUE(before.nonmanifold_edges.empty());
-    ASSERT_TRUE(before.inconsistent_edges.empty());
-  }
-  const PlaneCut cut = cut_at_plane(hull.patches, merged.mesh, co);
-  const SurfaceMesh& m = cut.mesh;
+  const Cut c = cut_hull(spec, co);
+  const SurfaceMesh& merged = c.merged.mesh;
+  const EdgeAdjacency before = build_edge_adjacency(merged.faces, merged.vertex_count());
+  ASSERT_TRUE(before.nonmanifold_edges.empty());
+  ASSERT_TRUE(before.inconsistent_edges.empty());
+  const SurfaceMesh& m = c.cut.mesh;
   double area = 0, full = 0;
   for (const Face& f : m.faces) area += face_area(m.positions, f);
-  for (const Face& f : merged.mesh.faces) full += face_area(merged.mesh.positions, f);
+  for (const Face& f : merged.faces) full += face_area(merged.positions, f);
   EXPECT_NEAR(area / full, 0.5, 1e-3);
   for (const Vec3d& p : m.positions) ASSERT_GE(p.y, 0.0);
   // The open side now includes the centre plane, exactly at y = 0 (the rest is the deck edge).
@@ -193,15 +191,12 @@ TEST(CutAtPlane, AButtockCutSplitsAlongTheYAxisAsTheWaterplaneDoesAlongZ) {
   HullSpec spec;
   spec.kind = HullKind::kRoundBilge;
   spec.patches = 24;
-  const GeneratedHull hull = generate_hull(spec);
-  TessellateOptions o;
-  o.edge_length = 1.0;
-  const Tessellation tess = tessellate(hull.patches, o, silent_progress());
-  const MergedSurface merged = merge_patches(hull.patches, tess.mesh, {}, silent_progress());
   PlaneCutOptions co;
   co.axis = 1;
   co.value = 2.0;
-  const PlaneCut cut = cut_at_plane(hull.patches, merged.mesh, co);
+  const Cut c = cut_hull(spec, co);
+  const PlaneCut& cut = c.cut;
+  const GeneratedHull& hull = c.hull;
   const SurfaceMesh& m = cut.mesh;
   EXPECT_GT(cut.report.faces_split, 50u);
   EXPECT_EQ(cut.report.unconverged, 0u);
