@@ -100,6 +100,15 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   std::optional<Floating> floating;
   std::vector<Patch> placed_patches;
   if (c.floating.given()) {
+    // A heeled hull has no y = 0 symmetry, so a half hull cannot stand for it.
+    const Vec3d e = hull.bbox.extent();
+    const double tol = 2e-4 * std::max({e.x, e.y, e.z});
+    if (c.floating.heel_deg != 0 && (hull.bbox.lo.y >= -tol || hull.bbox.hi.y <= tol)) {
+      throw UsageError(c.file +
+                       " is a half hull, and a heeled hull is not symmetric about y = 0: give "
+                       "the full hull to mesh it heeled (hullmesh does not yet mirror a half "
+                       "hull before meshing)");
+    }
     floating = resolve_floating(c.floating, hull.patches, hull.bbox);
     placed_patches = transformed(hull.patches, floating->transform);
     c.features.waterline_z = 0;

@@ -501,6 +501,15 @@ TEST(CliUnstructured, SymmetryFlagMirrorAndHalf) {
   EXPECT_NEAR(
       qb["hydrostatics"]["volume_m3"].get<double>() / qa["hydrostatics"]["volume_m3"].get<double>(),
       1, 1e-12);
+  // A full hull heels: the waterline still closes on itself, and the panels stay below it.
+  const fs::path heeled = dir / "heeled.gdf";
+  r = run_hullmesh("unstructured '" + full.string() + "' -o '" + heeled.string() + common +
+                   "--heel 10");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const nlohmann::json qh = quality_json(heeled);
+  EXPECT_FALSE(qh["half_hull"].get<bool>());
+  EXPECT_EQ(qh["topology"]["waterline_z"].get<double>(), 0.0);
+  EXPECT_GT(qh["topology"]["waterline_edges"].get<int>(), 20);
   r = run_hullmesh("unstructured '" + full.string() + "' -o '" + c.string() + common +
                    "--symmetry half");
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -522,6 +531,10 @@ TEST(CliUnstructured, ImpossibleFloatingPositionsAreUsageErrors) {
   r = run_hullmesh(base + "--waterline-z -3");  // below the keel
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("wholly above the waterplane"), std::string::npos) << r.out;
+  r = run_hullmesh(base + "--draft 3 --heel 5");  // a half hull heeled has no symmetry
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("is a half hull, and a heeled hull is not symmetric"), std::string::npos)
+      << r.out;
   r = run_hullmesh(base + "--draft 3 --waterline-z 3");
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("excludes"), std::string::npos) << r.out;
