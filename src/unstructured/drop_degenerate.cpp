@@ -1,5 +1,11 @@
 // Cleanup after welding: faces that collapsed (a repeated corner, or no area) go, and so do the
-// vertices no face uses any more.
+// vertices no face uses any more. Two faces on the same three vertices go too: back to back (a
+// zero-thickness double layer, as where the two halves of a hull meet in a corner triangle that
+// lies in the centre plane) both go; wound alike (a face given twice) one stays.
+#include <algorithm>
+#include <array>
+#include <utility>
+
 #include "unstructured/merge_steps.h"
 
 namespace hm::merge {
@@ -24,10 +30,35 @@ std::size_t drop_degenerate(Work& w, double length) {
   // Area floor: a triangle this small has lost a dimension to welding, not to the geometry.
   const double floor = 1e-14 * length * length;
   std::vector<std::uint8_t> keep(m.face_count());
+  // Each face's corners rotated to start at the lowest index: equal triples are the same face,
+  // wound alike; equal sorted triples with different rotations are back to back.
+  std::vector<std::pair<std::array<Index, 3>, Index>> by_corners;
   for (std::size_t f = 0; f < m.face_count(); ++f) {
     const Face& t = m.faces[f];
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
     keep[f] = !repeated && face_area(m.positions, t) > floor;
+    if (keep[f]) {
+      std::array<Index, 3> sorted{t[0], t[1], t[2]};
+      std::sort(sorted.begin(), sorted.end());
+      by_corners.push_back({sorted, static_cast<Index>(f)});
+    }
+  }
+  std::sort(by_corners.begin(), by_corners.end());
+  const auto rotated = [&](Index f) {
+    const Face& t = m.faces[f];
+    const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+    return std::array<Index, 3>{t[k], t[(k + 1) % 3], t[(k + 2) % 3]};
+  };
+  for (std::size_t i = 0; i + 1 < by_corners.size(); ++i) {
+    if (by_corners[i].first != by_corners[i + 1].first) continue;
+    if (i + 2 < by_corners.size() && by_corners[i + 2].first == by_corners[i].first) continue;
+    const Index a = by_corners[i].second, b = by_corners[i + 1].second;
+    if (rotated(a) == rotated(b)) {
+      keep[b] = 0;
+    } else {
+      keep[a] = keep[b] = 0;
+    }
+    ++i;
   }
   const std::size_t before = m.face_count();
   compact_faces(w, keep);

@@ -107,11 +107,15 @@ SnapStats snap_borders(Work& w, const MergeOptions& options, double length) {
     reach = std::max(reach, tol[i]);
   }
   std::vector<ClosePair> pairs;
+  const double coincident_tol = 1e-9 * length;
   if (nb > 1 && reach > 0) {
     for (const ClosePair& p : find_close_pairs(points, group, reach)) {
       const double limit = std::min({tol[p.a], tol[p.b], kEndFraction * 2 * b.edge_length[p.a],
                                      kEndFraction * 2 * b.edge_length[p.b]});
-      if (p.distance <= limit && dot(inward[p.a], inward[p.b]) <= kFoldCos) pairs.push_back(p);
+      const bool coincident = p.distance <= coincident_tol;
+      if (p.distance <= limit && (coincident || dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
+        pairs.push_back(p);
+      }
     }
   }
   for (std::size_t i = 0; i < nb; ++i) {

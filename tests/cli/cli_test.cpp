@@ -509,6 +509,7 @@ TEST(CliUnstructured, SymmetryFlagMirrorAndHalf) {
   const nlohmann::json qh = quality_json(heeled);
   EXPECT_FALSE(qh["half_hull"].get<bool>());
   EXPECT_EQ(qh["topology"]["waterline_z"].get<double>(), 0.0);
+  EXPECT_EQ(qh["topology"]["free_edges_below_waterline"].get<int>(), 0);
   EXPECT_GT(qh["topology"]["waterline_edges"].get<int>(), 20);
   r = run_hullmesh("unstructured '" + full.string() + "' -o '" + c.string() + common +
                    "--symmetry half");

@@ -86,6 +86,27 @@ TEST(Merge, ManySmallPatchesMeetAtTheCentrePlaneWithoutAThirdFace) {
   expect_clean_half_hull(m, "round-bilge, 300 patches");
 }
 
+// A full Wigley hull as two halves: they meet at the stem, stern and keel at well under 60
+// degrees (the fold test alone kept that seam open), and at each end-keel corner both halves
+// have a triangle lying in the centre plane, which the welds lay back to back. The result is
+// one closed hull open only along its deck edge.
+TEST(Merge, FullHullHalvesCloseAlongSharpEndsAndKeel) {
+  HullSpec spec;
+  spec.kind = HullKind::kWigley;
+  spec.patches = 8;
+  spec.full_hull = true;
+  const Merged m = merge_of(generate_hull(spec).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  ASSERT_EQ(m.adj.boundary_loops.size(), 1u);
+  double top = -1e300;
+  for (const Vec3d& p : m.merged.mesh.positions) top = std::max(top, p.z);
+  for (Index v : m.adj.boundary_loops[0].vertices) {
+    EXPECT_NEAR(m.merged.mesh.positions[v].z, top, 1e-6) << "an open edge below the deck";
+  }
+  EXPECT_GT(m.merged.report.enclosed_volume, 0.0);
+}
+
 TEST(Merge, ClosesGapsOfOneThousandthOfTheLength) {
   HullDefects d;
   d.gap = 0.1;  // 1e-3 L
