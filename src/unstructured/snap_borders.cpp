@@ -112,6 +112,9 @@ SnapStats snap_borders(Work& w, const MergeOptions& options, double length) {
     for (const ClosePair& p : find_close_pairs(points, group, reach)) {
       const double limit = std::min({tol[p.a], tol[p.b], kEndFraction * 2 * b.edge_length[p.a],
                                      kEndFraction * 2 * b.edge_length[p.b]});
+      // Coincident vertices weld whatever their inward directions: the two halves of a hull meet
+      // at a fine stem or keel well inside the fold test's 60 degrees, and a fold does not put
+      // two patches' vertices at the same point.
       const bool coincident = p.distance <= coincident_tol;
       if (p.distance <= limit && (coincident || dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
         pairs.push_back(p);
