@@ -1,11 +1,11 @@
 #include "mesh/mirror_mesh.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "core/error.h"
+#include "mesh/adjacency.h"
 
 namespace hm {
 
@@ -33,22 +33,9 @@ MirroredMesh mirror_half_hull(const SurfaceMesh& half, double on_plane_tol) {
 
   // Vertices on the open boundary (an edge with one face): only they may be shared. An interior
   // vertex near y = 0 (a narrow keel) is repeated, or the halves would overlap there.
-  std::vector<std::uint64_t> keys;
-  for (const Face& f : half.faces) {
-    const int n = f[3] == kInvalid ? 3 : 4;
-    for (int k = 0; k < n; ++k) {
-      const Index a = f[k], b = f[(k + 1) % n];
-      keys.push_back((std::uint64_t{std::min(a, b)} << 32) | std::max(a, b));
-    }
-  }
-  std::sort(keys.begin(), keys.end());
+  const EdgeAdjacency adj = build_edge_adjacency(half.faces, nv);
   std::vector<std::uint8_t> open(nv, 0);
-  for (std::size_t i = 0; i < keys.size();) {
-    std::size_t j = i;
-    while (j < keys.size() && keys[j] == keys[i]) ++j;
-    if (j - i == 1) open[keys[i] >> 32] = open[keys[i] & 0xffffffffu] = 1;
-    i = j;
-  }
+  for (Index e : adj.boundary_edges) open[adj.edges[e].v0] = open[adj.edges[e].v1] = 1;
 
   // Mirror index of every vertex: itself on the plane, else a new vertex (in vertex order).
   std::vector<Index> mirror(nv);
