@@ -59,16 +59,6 @@ double hull_length(const SurfaceMesh& m) {
   return std::max({e.x, e.y, e.z});
 }
 
-// A half hull: no vertex beyond tol on one of the two sides of y = 0.
-bool on_one_side_of_y0(const SurfaceMesh& m, double tol) {
-  bool port = false, starboard = false;
-  for (const Vec3d& p : m.positions) {
-    port |= p.y > tol;
-    starboard |= p.y < -tol;
-  }
-  return !(port && starboard);
-}
-
 void parse_sources(UnstructuredCommand& c) {
   for (const std::string& s : c.point_sources) {
     const auto v = parse_numbers(s, 5, "--source");
@@ -131,7 +121,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   // The cuts before coarsening: the waterplane, then the centre plane when one half of a full
   // hull is wanted.
   const double centre_tol = 2e-4 * hull_length(merged.mesh);
-  const bool file_half = on_one_side_of_y0(merged.mesh, centre_tol);
+  const bool file_half = is_half_hull(merged.mesh, centre_tol);
   const SurfaceMesh* fine_ptr = &merged.mesh;
   std::optional<PlaneCut> cut, centre_cut;
   if (floating) {
@@ -168,7 +158,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   const SurfaceMesh* output = &coarse;
   std::vector<std::array<Index, 2>> knuckle_edges = panels_mesh.feature_edges;
   std::optional<MirroredMesh> mirrored;
-  if (c.symmetry == "full" && on_one_side_of_y0(coarse, centre_tol)) {
+  if (c.symmetry == "full" && is_half_hull(coarse, centre_tol)) {
     mirrored = mirror_half_hull(coarse, centre_tol);
     output = &mirrored->mesh;
     std::vector<Index> twin(coarse.vertex_count());

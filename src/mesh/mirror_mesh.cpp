@@ -9,14 +9,18 @@
 
 namespace hm {
 
+bool is_half_hull(const SurfaceMesh& mesh, double tol) {
+  bool port = false, starboard = false;
+  for (const Vec3d& p : mesh.positions) {
+    port |= p.y > tol;
+    starboard |= p.y < -tol;
+  }
+  return !(port && starboard);
+}
+
 MirroredMesh mirror_half_hull(const SurfaceMesh& half, double on_plane_tol) {
   const std::size_t nv = half.vertex_count();
-  bool port = false, starboard = false;
-  for (const Vec3d& p : half.positions) {
-    port |= p.y > on_plane_tol;
-    starboard |= p.y < -on_plane_tol;
-  }
-  if (port && starboard) {
+  if (!is_half_hull(half, on_plane_tol)) {
     throw GeometryError("mirror: the mesh has vertices on both sides of y = 0 beyond " +
                         std::to_string(on_plane_tol) + " m; it is not a half hull");
   }

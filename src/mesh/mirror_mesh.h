@@ -15,6 +15,9 @@ struct MirroredMesh {
   std::vector<Index> face_new2old;  // the half's face each face comes from
 };
 
+// True when no vertex lies beyond tol (metres) on one of the two sides of y = 0.
+bool is_half_hull(const SurfaceMesh& mesh, double tol);
+
 // Vertices of the open boundary within on_plane_tol (metres) of y = 0 are set to y = 0 and shared
 // by both halves; the others are repeated with y negated. Mirrored faces run in reverse order (a
 // reflection turns the winding, and reversing it keeps every normal pointing into the fluid). Faces

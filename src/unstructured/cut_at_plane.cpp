@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "mesh/adjacency.h"
 #include "query/surface_refine.h"
 
 namespace hm {
@@ -43,45 +44,32 @@ struct SnapFacts {
 // plane), between two patches, or sharp. A vertex with none lies inside one smooth patch and may
 // move along it freely.
 SnapFacts snap_facts(const SurfaceMesh& mesh) {
-  std::vector<std::pair<std::uint64_t, Index>> uses;  // (edge key, face)
   SnapFacts facts;
   facts.movable.assign(mesh.vertex_count(), 1);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    std::array<std::array<Index, 3>, 2> tris;
-    const int n = face_triangles(mesh.faces[f], tris);
-    for (int t = 0; t < n; ++t) {
-      for (int k = 0; k < 3; ++k) {
-        const Index a = tris[t][k], b = tris[t][(k + 1) % 3];
-        uses.push_back(
-            {(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b), static_cast<Index>(f)});
-        if (mesh.vertex_patch[a] != mesh.face_patch[f]) facts.movable[a] = 0;
-      }
+    for (Index v : mesh.faces[f]) {
+      if (v != kInvalid && mesh.vertex_patch[v] != mesh.face_patch[f]) facts.movable[v] = 0;
     }
   }
-  std::sort(uses.begin(), uses.end());
+  const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, mesh.vertex_count());
   facts.shortest.assign(mesh.vertex_count(), std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < uses.size();) {
-    std::size_t j = i;
-    while (j < uses.size() && uses[j].first == uses[i].first) ++j;
-    const Index a = static_cast<Index>(uses[i].first >> 32);
-    const Index b = static_cast<Index>(uses[i].first & 0xffffffffu);
-    const double len = norm(mesh.positions[a] - mesh.positions[b]);
-    facts.shortest[a] = std::min(facts.shortest[a], len);
-    facts.shortest[b] = std::min(facts.shortest[b], len);
-    // A quad's diagonal is used twice by one face: interior, as it should be.
-    bool line = j - i != 2;
-    if (!line && uses[i].second != uses[i + 1].second) {
-      const Index f0 = uses[i].second, f1 = uses[i + 1].second;
+  for (const MeshEdge& e : adj.edges) {
+    const double len = norm(mesh.positions[e.v0] - mesh.positions[e.v1]);
+    facts.shortest[e.v0] = std::min(facts.shortest[e.v0], len);
+    facts.shortest[e.v1] = std::min(facts.shortest[e.v1], len);
+    bool line = e.uses != 2;
+    if (!line) {
+      const Index f0 = e.first_slot / 4, f1 = adj.opposite_face[e.first_slot];
       line = mesh.face_patch[f0] != mesh.face_patch[f1] ||
              dot(face_normal(mesh.positions, mesh.faces[f0]),
                  face_normal(mesh.positions, mesh.faces[f1])) < kSharpCos;
     }
     if (line) {
-      facts.line_edges.push_back({a, b});
-      facts.movable[a] = facts.movable[b] = 0;
+      facts.line_edges.push_back({e.v0, e.v1});
+      facts.movable[e.v0] = facts.movable[e.v1] = 0;
     }
-    i = j;
   }
+  std::sort(facts.line_edges.begin(), facts.line_edges.end());
   return facts;
 }
 

@@ -332,15 +332,20 @@ TEST(HullQuery, ClosedSectionIsCounterClockwiseAboutTheNormal) {
   }
 }
 
+// A plane through a random point of the Wigley's box below the waterline, any direction.
+Plane random_plane(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const Vec3d point{0.5 * kL * unit(rng), 0.5 * kB * unit(rng), -kT * (0.5 + 0.5 * unit(rng))};
+  return {point, {unit(rng), unit(rng), unit(rng)}};
+}
+
 TEST(HullQuery, BvhSectionEqualsBruteForce) {
   const Scene scene = split_wigley_scene(false);
   const HullQuery q = scene.query();
   std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> unit(-1, 1);
   int nonempty = 0;
   for (int i = 0; i < 60; ++i) {
-    const Plane plane{{0.5 * kL * unit(rng), 0.5 * kB * unit(rng), -kT * (0.5 + 0.5 * unit(rng))},
-                      {unit(rng), unit(rng), unit(rng)}};
+    const Plane plane = random_plane(rng);
     const Section a = q.section(plane), b = q.section_brute_force(plane);
     ASSERT_EQ(a.polylines.size(), b.polylines.size());
     nonempty += !a.polylines.empty();
@@ -362,11 +367,9 @@ TEST(HullQuery, CrossedFacesThroughTheBvhEqualTheLoopAndStraddleThePlane) {
   const Scene scene = split_wigley_scene(false);
   const HullQuery q = scene.query();
   std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> unit(-1, 1);
   int nonempty = 0;
   for (int i = 0; i < 40; ++i) {
-    const Plane plane{{0.5 * kL * unit(rng), 0.5 * kB * unit(rng), -kT * (0.5 + 0.5 * unit(rng))},
-                      {unit(rng), unit(rng), unit(rng)}};
+    const Plane plane = random_plane(rng);
     const std::vector<Index> a = q.crossed_faces(plane), b = q.crossed_faces_brute_force(plane);
     ASSERT_EQ(a, b);
     nonempty += !a.empty();
