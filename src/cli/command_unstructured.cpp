@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/floating_options.h"
 #include "cli/load_hull.h"
+#include "cli/prepare_hull.h"
 #include "core/bbox.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
@@ -52,13 +53,6 @@ struct UnstructuredCommand {
   std::string symmetry = "auto";
 };
 
-double hull_length(const SurfaceMesh& m) {
-  BBox3d box;
-  for (const Vec3d& p : m.positions) box.add(p);
-  const Vec3d e = box.extent();
-  return std::max({e.x, e.y, e.z});
-}
-
 void parse_sources(UnstructuredCommand& c) {
   for (const std::string& s : c.point_sources) {
     const auto v = parse_numbers(s, 5, "--source");
@@ -83,64 +77,37 @@ void parse_sources(UnstructuredCommand& c) {
 int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   parse_sources(c);
   check_mesh_output(c.output);
-  const long long t0 = now_ns();
-  const ImportResult hull = load_hull(c.file, c.units, g.quiet);
-  // Floating: the patches are placed first, so that everything below works in the floating frame
-  // and the waterplane z = 0 cuts the merged fine mesh before it is coarsened.
-  std::optional<Floating> floating;
-  std::vector<Patch> placed_patches;
-  if (c.floating.given()) {
-    // A heeled hull has no y = 0 symmetry, so a half hull cannot stand for it.
-    const Vec3d e = hull.bbox.extent();
-    const double tol = 2e-4 * std::max({e.x, e.y, e.z});
-    if (c.floating.heel_deg != 0 && (hull.bbox.lo.y >= -tol || hull.bbox.hi.y <= tol)) {
-      throw UsageError(c.file +
-                       " is a half hull, and a heeled hull is not symmetric about y = 0: give "
-                       "the full hull to mesh it heeled (hullmesh does not yet mirror a half "
-                       "hull before meshing)");
-    }
-    floating = resolve_floating(c.floating, hull.patches, hull.bbox);
-    placed_patches = transformed(hull.patches, floating->transform);
-    c.features.waterline_z = 0;
-  }
-  const std::span<const Patch> patches =
-      floating ? std::span<const Patch>(placed_patches) : std::span<const Patch>(hull.patches);
-  const double t_import = seconds_since(t0);
-
   // The fine mesh: sized from the panel target unless the user sized it (over the whole hull, so
   // that a draft does not change the panel size).
-  TessellateOptions o = c.tessellate;
+  PrepareArgs pa;
+  pa.file = c.file;
+  pa.units = c.units;
+  pa.floating = c.floating;
+  pa.cut_centre_plane = c.symmetry == "half";
+  pa.tessellate = c.tessellate;
+  pa.merge = c.merge;
+  pa.features = c.features;
+  pa.quiet = g.quiet;
   const std::size_t panels = c.coarsen.target_panels > 0 ? c.coarsen.target_panels : 4000;
-  std::size_t fine_triangles = c.triangles;
-  if (fine_triangles == 0 && o.edge_length <= 0) {
-    fine_triangles = std::clamp(kFinePerPanel * panels, kFineMin, kFineMax);
+  pa.fine_triangles = c.triangles;
+  if (pa.fine_triangles == 0 && c.tessellate.edge_length <= 0) {
+    pa.fine_triangles = std::clamp(kFinePerPanel * panels, kFineMin, kFineMax);
   }
-  if (fine_triangles > 0) o.edge_length = edge_length_for_triangles(patches, fine_triangles);
-  const Tessellation t = tessellate(patches, o, silent_progress());
-  const MergedSurface merged = merge_patches(patches, t.mesh, c.merge, silent_progress());
-  // The cuts before coarsening: the waterplane, then the centre plane when one half of a full
-  // hull is wanted.
-  const double centre_tol = 2e-4 * hull_length(merged.mesh);
-  const bool file_half = is_half_hull(merged.mesh, centre_tol);
-  const SurfaceMesh* fine_ptr = &merged.mesh;
-  std::optional<PlaneCut> cut, centre_cut;
-  if (floating) {
-    cut = cut_at_plane(patches, *fine_ptr, {});
-    fine_ptr = &cut->mesh;
-  }
-  if (c.symmetry == "half" && !file_half) {
-    PlaneCutOptions co;
-    co.axis = 1;
-    co.keep_below = false;  // the port half, y >= 0
-    centre_cut = cut_at_plane(patches, *fine_ptr, co);
-    fine_ptr = &centre_cut->mesh;
-  }
-  const SurfaceMesh& fine = *fine_ptr;
-  const long long t1 = now_ns();
-  const EdgeAdjacency adj = build_edge_adjacency(fine.faces, fine.vertex_count());
-  check_merged_manifold(c.file, fine, adj, "`hullmesh merge` writes the surface for inspection");
-  const FeatureSet features = find_features(fine, adj, patches, c.features);
-  const double t_features = seconds_since(t1);
+  PreparedHull ph;
+  prepare_hull(pa, ph);
+  const std::span<const Patch> patches = ph.patches();
+  const std::optional<Floating>& floating = ph.floating;
+  const Tessellation& t = ph.tessellation;
+  const MergedSurface& merged = ph.merged;
+  const double centre_tol = ph.centre_tol;
+  const bool file_half = ph.file_half;
+  const std::optional<PlaneCut>& cut = ph.waterplane_cut;
+  const std::optional<PlaneCut>& centre_cut = ph.centre_cut;
+  const SurfaceMesh& fine = ph.fine();
+  const EdgeAdjacency& adj = ph.adjacency;
+  const FeatureSet& features = ph.features;
+  const double t_import = ph.seconds_import;
+  const double t_features = ph.seconds_features;
 
   c.coarsen.fine_chord_error = t.summary.max_chord_error;
   const CoarsenedMesh panels_mesh =

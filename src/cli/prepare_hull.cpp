@@ -1,0 +1,69 @@
+#include "cli/prepare_hull.h"
+
+#include <algorithm>
+
+#include "cli/load_hull.h"
+#include "core/bbox.h"
+#include "core/error.h"
+#include "mesh/mirror_mesh.h"
+#include "quality/hydrostatics.h"
+
+namespace hm::cli {
+
+double hull_length(const SurfaceMesh& m) {
+  BBox3d box;
+  for (const Vec3d& p : m.positions) box.add(p);
+  const Vec3d e = box.extent();
+  return std::max({e.x, e.y, e.z});
+}
+
+void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
+  const long long t0 = now_ns();
+  out.hull = load_hull(args.file, args.units, args.quiet);
+  FeatureOptions features = args.features;
+  // Floating: the patches are placed first, so that everything below works in the floating frame
+  // and the waterplane z = 0 cuts the merged fine mesh before it is meshed.
+  if (args.floating.given()) {
+    // A heeled hull has no y = 0 symmetry, so a half hull cannot stand for it.
+    const Vec3d e = out.hull.bbox.extent();
+    const double tol = 2e-4 * std::max({e.x, e.y, e.z});
+    if (args.floating.heel_deg != 0 && (out.hull.bbox.lo.y >= -tol || out.hull.bbox.hi.y <= tol)) {
+      throw UsageError(args.file +
+                       " is a half hull, and a heeled hull is not symmetric about y = 0: give "
+                       "the full hull to mesh it heeled (hullmesh does not yet mirror a half "
+                       "hull before meshing)");
+    }
+    out.floating = resolve_floating(args.floating, out.hull.patches, out.hull.bbox);
+    out.placed = transformed(out.hull.patches, out.floating->transform);
+    features.waterline_z = 0;
+  }
+  out.seconds_import = seconds_since(t0);
+  const std::span<const Patch> patches = out.patches();
+
+  TessellateOptions o = args.tessellate;
+  if (args.fine_triangles > 0 && o.edge_length <= 0) {
+    o.edge_length = edge_length_for_triangles(patches, args.fine_triangles);
+  }
+  out.tessellation = tessellate(patches, o, silent_progress());
+  out.merged = merge_patches(patches, out.tessellation.mesh, args.merge, silent_progress());
+  // The cuts before meshing: the waterplane, then the centre plane when one half of a full hull
+  // is wanted.
+  out.centre_tol = 2e-4 * hull_length(out.merged.mesh);
+  out.file_half = is_half_hull(out.merged.mesh, out.centre_tol);
+  if (out.floating) out.waterplane_cut = cut_at_plane(patches, out.fine(), {});
+  if (args.cut_centre_plane && !out.file_half) {
+    PlaneCutOptions co;
+    co.axis = 1;
+    co.keep_below = false;  // the port half, y >= 0
+    out.centre_cut = cut_at_plane(patches, out.fine(), co);
+  }
+  const long long t1 = now_ns();
+  const SurfaceMesh& fine = out.fine();
+  out.adjacency = build_edge_adjacency(fine.faces, fine.vertex_count());
+  check_merged_manifold(args.file, fine, out.adjacency,
+                        "`hullmesh merge` writes the surface for inspection");
+  out.features = find_features(fine, out.adjacency, patches, features);
+  out.seconds_features = seconds_since(t1);
+}
+
+}  // namespace hm::cli

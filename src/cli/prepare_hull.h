@@ -1,0 +1,68 @@
+// Shared by the two meshers: import, place the hull afloat, tessellate it fine, merge the patches
+// into one surface, cut it at the waterplane and (for one half of a full hull) at the centre
+// plane, and find its knuckles and boundaries.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cli/floating_options.h"
+#include "iges/read_iges.h"
+#include "mesh/adjacency.h"
+#include "tessellate/tessellate.h"
+#include "unstructured/cut_at_plane.h"
+#include "unstructured/features.h"
+#include "unstructured/merge.h"
+
+namespace hm::cli {
+
+struct PrepareArgs {
+  std::string file, units;
+  FloatingArgs floating;
+  // "half": keep the port half of a full hull (cut at y = 0 before meshing).
+  bool cut_centre_plane = false;
+  TessellateOptions tessellate;  // edge_length > 0 wins over fine_triangles
+  std::size_t fine_triangles = 0;
+  MergeOptions merge;
+  FeatureOptions features;
+  bool quiet = false;
+};
+
+// Not movable: it is filled in place and read through its accessors.
+struct PreparedHull {
+  ImportResult hull;
+  std::optional<Floating> floating;
+  std::vector<Patch> placed;  // the patches in the floating frame (empty when not afloat)
+  Tessellation tessellation;
+  MergedSurface merged;
+  std::optional<PlaneCut> waterplane_cut, centre_cut;
+  bool file_half = false;   // the file holds one side of the centre plane
+  double centre_tol = 0;    // m: 2e-4 of the merged hull's largest extent
+  EdgeAdjacency adjacency;  // of fine()
+  FeatureSet features;      // of fine()
+  double seconds_import = 0, seconds_features = 0;
+
+  PreparedHull() = default;
+  PreparedHull(const PreparedHull&) = delete;
+  PreparedHull& operator=(const PreparedHull&) = delete;
+
+  std::span<const Patch> patches() const {
+    return floating ? std::span<const Patch>(placed) : std::span<const Patch>(hull.patches);
+  }
+  // The surface the meshers work on: merged, then cut.
+  const SurfaceMesh& fine() const {
+    return centre_cut ? centre_cut->mesh : waterplane_cut ? waterplane_cut->mesh : merged.mesh;
+  }
+};
+
+// Fills `out`. Throws UsageError for a heeled half hull (it has no y = 0 symmetry), and whatever
+// import, merge and the cuts throw; GeometryError (exit 5) when the merged surface is not
+// edge-manifold, naming where.
+void prepare_hull(const PrepareArgs& args, PreparedHull& out);
+
+// Largest extent of the mesh's bounding box, m.
+double hull_length(const SurfaceMesh& m);
+
+}  // namespace hm::cli
