@@ -25,5 +25,6 @@ void register_convert(CLI::App& app, const GlobalOptions& global, Action& action
 void register_quality(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_merge(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& action);
+void register_structured(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace hm::cli

@@ -36,6 +36,7 @@ int run(int argc, char** argv) {
   register_quality(app, global, action);
   register_merge(app, global, action);
   register_unstructured(app, global, action);
+  register_structured(app, global, action);
 
   try {
     app.parse(argc, argv);

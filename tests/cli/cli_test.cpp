@@ -544,3 +544,48 @@ TEST(CliUnstructured, ImpossibleFloatingPositionsAreUsageErrors) {
 
 }  // namespace
 }  // namespace hm
+
+namespace hm {
+namespace {
+
+TEST(CliStructured, WettedChineHullWithABlockFile) {
+  const fs::path dir = test::scratch_dir("cli_structured");
+  const fs::path igs = dir / "chine.igs", gdf = dir / "panels.gdf", blocks = dir / "blocks.json";
+  ASSERT_EQ(test::run_hullmesh("-q generate chine --patches 8 -o '" + igs.string() + "'").exit_code,
+            0);
+  std::ofstream(blocks)
+      << R"({"planes": [{"name": "midship", "x": 50}, {"name": "WL -2", "z": -2}]})";
+  const auto r = test::run_hullmesh("structured '" + igs.string() + "' -o '" + gdf.string() +
+                                    "' --panels 800 --draft 5 --blocks '" + blocks.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(
+      std::regex_search(r.out, std::regex(": [0-9]+ panels \\([0-9]+ quads, [0-9]+ triangles\\)")))
+      << r.out;
+  EXPECT_NE(r.out.find("1 cut stations (block file)"), std::string::npos) << r.out;
+  // Afloat, block planes are in the floating frame (free surface z = 0).
+  EXPECT_NE(r.out.find("plane 1"), std::string::npos) << r.out;  // blocks bounded by WL -2
+  EXPECT_NE(r.out.find("0 non-manifold edges"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("orientation consistent"), std::string::npos) << r.out;
+  ASSERT_TRUE(fs::exists(gdf));
+  const auto q = test::run_hullmesh("quality '" + gdf.string() + "'");
+  EXPECT_NE(q.out.find("quads"), std::string::npos) << q.out;
+}
+
+TEST(CliStructured, BadBlockFileAndSizeAreRefusedBeforeMeshing) {
+  const fs::path dir = test::scratch_dir("cli_structured_bad");
+  const fs::path igs = dir / "w.igs", out = dir / "p.gdf", blocks = dir / "b.json";
+  ASSERT_EQ(test::run_hullmesh("-q generate wigley -o '" + igs.string() + "'").exit_code, 0);
+  std::ofstream(blocks) << R"({"planes": [{"x": 50, "z": 1}]})";
+  auto r = test::run_hullmesh("structured '" + igs.string() + "' -o '" + out.string() +
+                              "' --blocks '" + blocks.string() + "'");
+  EXPECT_EQ(r.exit_code, 3) << r.out;
+  EXPECT_NE(r.out.find("b.json: planes[0]: give exactly one"), std::string::npos) << r.out;
+  r = test::run_hullmesh("structured '" + igs.string() + "' -o '" + out.string() +
+                         "' --size 1,0,1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("--size 1,0,1: every size must be > 0 m"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace hm

@@ -1,0 +1,210 @@
+// hullmesh structured FILE -o panels.gdf [--blocks blocks.json | --auto-blocks] [--size dx,dy,dz
+// | --panels N]: the paper's structured path. Import, tessellate, merge, find knuckles and
+// boundaries, then grow quad panels row by row on station sections, block by block, and report
+// the panels against the panel-code rules.
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/floating_options.h"
+#include "cli/load_hull.h"
+#include "cli/prepare_hull.h"
+#include "core/error.h"
+#include "io/write_mesh.h"
+#include "mesh/mirror_mesh.h"
+#include "mesh/snap_centre_plane.h"
+#include "quality/hydrostatics.h"
+#include "quality/quality_report.h"
+#include "query/hull_query.h"
+#include "structured/read_block_file.h"
+#include "structured/structured.h"
+#include "unstructured/measure_deviation.h"
+
+namespace hm::cli {
+namespace {
+
+// Fine triangles per panel for the internal surface the rows are cut from.
+constexpr std::size_t kFinePerPanel = 20;
+constexpr std::size_t kFineMin = 40'000, kFineMax = 1'000'000;
+
+struct StructuredCommand {
+  std::string file, output, units, blocks, size;
+  bool auto_blocks = false;
+  std::size_t triangles = 0;
+  StructuredOptions structured;
+  FeatureOptions features;
+  FloatingArgs floating;
+  std::string symmetry = "auto";
+};
+
+int run_structured(StructuredCommand c, const GlobalOptions& g) {
+  check_mesh_output(c.output);
+  if (!c.size.empty()) {
+    const auto v = parse_numbers(c.size, 3, "--size");
+    if (!(v[0] > 0 && v[1] > 0 && v[2] > 0)) {
+      throw UsageError("--size " + c.size + ": every size must be > 0 m");
+    }
+    c.structured.size = {v[0], v[1], v[2]};
+  }
+  // A block file's planes replace the automatic cuts unless --auto-blocks asks for both.
+  if (!c.blocks.empty()) read_block_file(c.blocks, c.structured);
+  c.structured.auto_blocks = c.blocks.empty() || c.auto_blocks;
+
+  PrepareArgs pa;
+  pa.file = c.file;
+  pa.units = c.units;
+  pa.floating = c.floating;
+  pa.cut_centre_plane = c.symmetry == "half";
+  pa.features = c.features;
+  pa.quiet = g.quiet;
+  pa.fine_triangles =
+      c.triangles > 0 ? c.triangles
+                      : std::clamp(kFinePerPanel * c.structured.target_panels, kFineMin, kFineMax);
+  PreparedHull ph;
+  prepare_hull(pa, ph);
+  const SurfaceMesh& fine = ph.fine();
+  const long long t0 = now_ns();
+  const HullQuery query(ph.patches(), fine);
+  const double t_query = seconds_since(t0);
+  const long long t1 = now_ns();
+  StructuredMesh sm = mesh_structured(ph.patches(), fine, query, ph.features, c.structured);
+  const double t_mesh = seconds_since(t1);
+  const StructuredReport& r = sm.report;
+
+  SurfaceMesh& panels = sm.mesh;
+  const std::size_t centre_snapped =
+      ph.file_half || ph.centre_cut ? snap_to_centre_plane(panels, ph.centre_tol) : 0;
+  const DeviationMeasure dev = measure_deviation(query, panels);
+  const SurfaceMesh* output = &panels;
+  std::vector<std::array<Index, 2>> knuckle_edges = sm.knuckle_edges;
+  std::optional<MirroredMesh> mirrored;
+  if (c.symmetry == "full" && is_half_hull(panels, ph.centre_tol)) {
+    mirrored = mirror_half_hull(panels, ph.centre_tol);
+    output = &mirrored->mesh;
+    std::vector<Index> twin(panels.vertex_count());
+    for (std::size_t v = 0; v < twin.size(); ++v) twin[v] = static_cast<Index>(v);
+    for (std::size_t v = twin.size(); v < mirrored->vert_new2old.size(); ++v) {
+      twin[mirrored->vert_new2old[v]] = static_cast<Index>(v);
+    }
+    for (const auto& [a, b] : sm.knuckle_edges) knuckle_edges.push_back({twin[a], twin[b]});
+  }
+  QualityOptions qo;
+  qo.knuckle_edges = knuckle_edges;
+  qo.rules.min_triangle_angle_share = 0;
+  if (ph.floating) qo.waterline_z = 0;
+  const QualityReport quality = assess_quality(*output, qo);
+
+  MeshWriteOptions w;
+  w.info.title = "hullmesh structured panels of " + c.file;
+  w.info.symmetry.about_y0 = quality.half_hull;
+  write_mesh(c.output, *output, w);
+
+  if (!g.quiet) {
+    std::printf("%s: %zu panels (%zu quads, %zu triangles), %zu vertices\n", c.output.c_str(),
+                output->face_count(), quality.quads, quality.triangles, output->vertex_count());
+    std::printf(
+        "  panel size %.4g x %.4g x %.4g m (x, y, z); %zu stations, %zu cut stations (%s)\n",
+        r.size.x, r.size.y, r.size.z, r.stations, r.cut_stations,
+        c.structured.auto_blocks ? (c.blocks.empty() ? "automatic" : "block file and automatic")
+                                 : "block file");
+    std::printf("  %zu blocks:\n", r.blocks.size());
+    std::printf("    %5s  %9s %9s  %6s %6s %6s  %s\n", "block", "x0 (m)", "x1 (m)", "rows", "quads",
+                "tris", "between");
+    for (const BlockReport& b : r.blocks) {
+      std::printf("    %5u  %9.4g %9.4g  %6zu %6zu %6zu  %s .. %s\n", b.id, b.x0, b.x1, b.rows,
+                  b.quads, b.triangles, b.lower.c_str(), b.upper.c_str());
+    }
+    std::printf(
+        "  quads split into triangles (twisted or distorted): %zu; end caps: %zu quads, "
+        "%zu triangles\n",
+        r.split_twisted, r.cap_quads, r.cap_triangles);
+    if (r.rows_unmatched > 0) {
+      std::printf("  WARNING: %zu strips between rows could not be paired and are left open\n",
+                  r.rows_unmatched);
+    }
+    if (mirrored) {
+      std::printf("  mirrored about y = 0: %zu panels in the full hull\n", output->face_count());
+    }
+    if (centre_snapped > 0) {
+      std::printf("  %zu vertices of the open side moved onto y = 0 (at most %.3g m)\n",
+                  centre_snapped, ph.centre_tol);
+    }
+    std::printf("  symmetry: %s\n", quality.half_hull
+                                        ? "half hull, y = 0 flag written where the format has one"
+                                        : "full hull, no flag");
+    std::printf("  quads with side ratio < %.3g: %.1f%% (max %.3g)\n", qo.rules.max_side_ratio,
+                100 * quality.side_ratio_share, quality.max_side_ratio);
+    std::printf("  panels with every neighbour's area ratio < %.3g: %.1f%% (max %.3g)\n",
+                qo.rules.max_area_ratio, 100 * quality.area_ratio_share, quality.max_area_ratio);
+    std::printf("  neighbour normals within %.3g deg (away from knuckles): %.1f%% (max %.3g)\n",
+                qo.rules.max_normal_angle_deg, 100 * quality.normal_angle_share,
+                quality.max_normal_angle_deg);
+    std::printf("  quad warp: max %.3g (corner height / mean diagonal); knuckle edges %zu\n",
+                quality.max_warp, quality.knuckle_edges);
+    std::printf("  deviation from the NURBS: max %.3g m, mean %.3g m\n", dev.max, dev.mean);
+    std::printf(
+        "  topology: %zu boundary loops, %zu non-manifold edges, %zu free edges below "
+        "the waterline, orientation %s\n",
+        quality.topology.boundary_loops, quality.topology.nonmanifold_edges,
+        quality.topology.free_edges_below,
+        quality.topology.orientation_consistent ? "consistent" : "INCONSISTENT");
+    std::printf(
+        "  time: import %.3f s, tessellate %.3f s, merge %.3f s, features %.3f s, query %.3f s, "
+        "structured %.3f s (plan %.3f, rows %.3f, grow and zip %.3f, relax %.3f)\n",
+        ph.seconds_import, ph.tessellation.summary.seconds, ph.merged.report.seconds,
+        ph.seconds_features, t_query, t_mesh, r.seconds_plan, r.seconds_rows, r.seconds_grow,
+        r.seconds_relax);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_structured(CLI::App& app, const GlobalOptions& global, Action& action) {
+  auto c = std::make_shared<StructuredCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "structured",
+      "Multi-block quad panels grown row by row on station sections (the paper's structured "
+      "algorithm)");
+  cmd->add_option("file", c->file, "IGES file")->required();
+  cmd->add_option("-o,--output", c->output, "Output mesh (.gdf, .vtu, .stl, .obj, ...)")
+      ->required();
+  cmd->add_option("--blocks", c->blocks, "JSON block file: planes and per-block panel sizes");
+  cmd->add_flag("--auto-blocks", c->auto_blocks,
+                "Automatic block cuts (the default without --blocks; with it, both)");
+  cmd->add_option("--size", c->size, "Panel sizes dx,dy,dz in m (default: from --panels)");
+  cmd->add_option("--panels", c->structured.target_panels,
+                  "About this many panels when --size is not given (default 2000)")
+      ->check(CLI::Range(std::size_t{4}, std::size_t{10'000'000}));
+  cmd->add_option("--min-opposite-ratio", c->structured.min_opposite_ratio,
+                  "A quad whose opposite sides differ more becomes two triangles (default 0.35)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--max-warp", c->structured.max_warp,
+                  "A quad warped more becomes two triangles (default 0.08)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--relax-passes", c->structured.relax_passes,
+                  "Constrained smoothing passes (default 8)")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--knuckle-angle", c->features.knuckle_angle_deg,
+                  "Dihedral angle in degrees above which an edge may be a knuckle")
+      ->check(CLI::Range(1.0, 179.0));
+  cmd->add_option("--triangles", c->triangles,
+                  "Fine triangles of the internal surface (default 20 per panel, 40k to 1M)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{50'000'000}));
+  cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
+      ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
+  add_floating_options(cmd, c->floating);
+  cmd->add_option("--symmetry", c->symmetry,
+                  "auto: as the file is (a half hull gets its y = 0 flag); half: keep the port "
+                  "half of a full hull; full: mirror a half hull")
+      ->check(CLI::IsMember({"auto", "half", "full"}));
+  cmd->callback(
+      [c, &global, &action] { action = [c, &global] { return run_structured(*c, global); }; });
+}
+
+}  // namespace hm::cli

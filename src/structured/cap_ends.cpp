@@ -1,0 +1,186 @@
+// End caps. Beyond the first station (the stern, or a transom) and the last (the stem) the hull
+// is a small region bounded by the end row and by the surface's boundary (keel and centre plane,
+// the waterline, a transom edge). Its boundary path is resampled at the panel size, keeping its
+// corners, and zipped against the row.
+#include "structured/cap_ends.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mesh/adjacency.h"
+
+namespace hm::structured {
+namespace {
+
+// A path point turning by more than this (degrees) is kept as a node.
+constexpr double kCornerDeg = 40;
+
+struct LoopSpot {
+  std::size_t loop = 0, edge = 0;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+LoopSpot nearest_boundary_edge(const SurfaceMesh& s, const EdgeAdjacency& adj, const Vec3d& q) {
+  LoopSpot best;
+  for (std::size_t l = 0; l < adj.boundary_loops.size(); ++l) {
+    const std::vector<Index>& v = adj.boundary_loops[l].vertices;
+    for (std::size_t e = 0; e < v.size(); ++e) {
+      const Vec3d& a = s.positions[v[e]];
+      const Vec3d& b = s.positions[v[(e + 1) % v.size()]];
+      const Vec3d d = b - a;
+      const double dd = squared_norm(d);
+      const double f = dd > 0 ? std::clamp(dot(q - a, d) / dd, 0.0, 1.0) : 0.0;
+      const double dist = norm(a + d * f - q);
+      if (dist < best.distance) best = {l, e, dist};
+    }
+  }
+  return best;
+}
+
+// The loop vertices strictly between spots a and b, walking forwards or backwards.
+std::vector<Index> loop_path(const std::vector<Index>& v, std::size_t ea, std::size_t eb,
+                             bool forward) {
+  const std::size_t n = v.size();
+  std::vector<Index> out;
+  if (ea == eb) return out;  // both ends on one boundary edge: nothing between them
+  if (forward) {
+    for (std::size_t k = (ea + 1) % n;; k = (k + 1) % n) {
+      out.push_back(v[k]);
+      if (k == eb) break;
+    }
+  } else {
+    for (std::size_t k = ea;; k = (k + n - 1) % n) {
+      out.push_back(v[k]);
+      if (k == (eb + 1) % n) break;
+    }
+  }
+  return out;
+}
+
+// Resamples the polyline pts at about one panel per metric unit, keeping its corners; returns
+// the interior points (the two ends excluded).
+std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric) {
+  std::vector<std::size_t> keep{0};
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+    const Vec3d a = pts[i] - pts[i - 1], b = pts[i + 1] - pts[i];
+    const double na = norm(a), nb = norm(b);
+    if (na == 0 || nb == 0) continue;
+    if (dot(a, b) / (na * nb) < std::cos(kCornerDeg * M_PI / 180)) keep.push_back(i);
+  }
+  keep.push_back(pts.size() - 1);
+  std::vector<Vec3d> out;
+  for (std::size_t k = 0; k + 1 < keep.size(); ++k) {
+    std::vector<double> s{0};
+    for (std::size_t i = keep[k] + 1; i <= keep[k + 1]; ++i)
+      s.push_back(s.back() + metric.length(pts[i - 1], pts[i]));
+    const int n = std::max(1, static_cast<int>(std::lround(s.back())));
+    for (int j = 1; j < n; ++j) {
+      const double t = s.back() * j / n;
+      std::size_t i = 0;
+      while (i + 2 < s.size() && s[i + 1] < t) ++i;
+      const double len = s[i + 1] - s[i];
+      const double f = len > 0 ? (t - s[i]) / len : 0;
+      out.push_back(pts[keep[k] + i] * (1 - f) + pts[keep[k] + i + 1] * f);
+    }
+    if (k + 2 < keep.size()) out.push_back(pts[keep[k + 1]]);
+  }
+  return out;
+}
+
+std::vector<double> fractions(std::span<const Index> ids, const SurfaceMesh& mesh,
+                              const Metric& metric) {
+  std::vector<double> f{0};
+  for (std::size_t i = 1; i < ids.size(); ++i)
+    f.push_back(f.back() + metric.length(mesh.positions[ids[i - 1]], mesh.positions[ids[i]]));
+  const double total = std::max(f.back(), 1e-300);
+  for (double& x : f) x /= total;
+  return f;
+}
+
+}  // namespace
+
+CapCounts cap_ends(const SurfaceMesh& surface, std::span<const Row> rows,
+                   std::span<const RowNodes> nodes,
+                   std::span<const std::vector<Index>> first_vertex, const Metric& metric,
+                   const ZipOptions& zip, SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
+  CapCounts counts;
+  if (rows.empty()) return counts;
+  const EdgeAdjacency adj = build_edge_adjacency(surface.faces, surface.vertex_count());
+  const double tol = 0.25 * std::min({metric.size.x, metric.size.y, metric.size.z});
+  for (const bool aft : {true, false}) {
+    const std::size_t j = aft ? 0 : rows.size() - 1;
+    const Row& row = rows[j];
+    if (row.curves.size() != 1) {
+      ++counts.unmatched;
+      continue;
+    }
+    const RowCurve& c = row.curves[0];
+    const LoopSpot sa = nearest_boundary_edge(surface, adj, c.points.front());
+    const LoopSpot sb = nearest_boundary_edge(surface, adj, c.points.back());
+    if (sa.loop != sb.loop || sa.distance > tol || sb.distance > tol) {
+      ++counts.unmatched;
+      continue;
+    }
+    const std::vector<Index>& loop = adj.boundary_loops[sa.loop].vertices;
+    // Of the two ways round the loop, the one beyond the station.
+    std::vector<Index> best;
+    double best_score = 0;
+    for (const bool forward : {true, false}) {
+      const std::vector<Index> path = loop_path(loop, sa.edge, sb.edge, forward);
+      double mean = row.x;
+      if (!path.empty()) {
+        mean = 0;
+        for (Index v : path) mean += surface.positions[v].x;
+        mean /= static_cast<double>(path.size());
+      }
+      const double score = aft ? row.x - mean : mean - row.x;
+      if (best.empty() || score > best_score) {
+        best = path;
+        best_score = score;
+      }
+    }
+    if (best.empty() || best_score <= 0) {
+      ++counts.unmatched;
+      continue;
+    }
+    std::vector<Vec3d> pts{c.points.front()};
+    for (Index v : best) pts.push_back(surface.positions[v]);
+    pts.push_back(c.points.back());
+    const std::vector<Vec3d> inner = resample(pts, metric);
+    // The path's nodes: the row's two end nodes and new fixed ones between.
+    const Index row_first = first_vertex[j][0];
+    const Index row_last = row_first + static_cast<Index>(nodes[j].s[0].size() - 1);
+    std::vector<Index> path_ids{row_first};
+    for (const Vec3d& p : inner) {
+      path_ids.push_back(static_cast<Index>(mesh.positions.size()));
+      mesh.positions.push_back(p);
+      // The nearest surface vertex lends its patch and (u, v): a cap node sits on the boundary.
+      Index near = best.front();
+      double nd = std::numeric_limits<double>::infinity();
+      for (Index v : best) {
+        const double d = squared_norm(surface.positions[v] - p);
+        if (d < nd) {
+          nd = d;
+          near = v;
+        }
+      }
+      mesh.vertex_patch.push_back(surface.vertex_patch.empty() ? 0 : surface.vertex_patch[near]);
+      mesh.vertex_uv.push_back(surface.vertex_uv.empty() ? Vec2d{} : surface.vertex_uv[near]);
+      slots.push_back(NodeSlot{});
+    }
+    path_ids.push_back(row_last);
+    std::vector<Index> row_ids(nodes[j].s[0].size());
+    for (std::size_t i = 0; i < row_ids.size(); ++i) row_ids[i] = row_first + static_cast<Index>(i);
+    const std::vector<double> fp = fractions(path_ids, mesh, metric);
+    const std::vector<double> fr = fractions(row_ids, mesh, metric);
+    const ZipCounts n =
+        aft ? zip_chains(path_ids, fp, row_ids, fr, mesh.positions, zip, mesh.faces)
+            : zip_chains(row_ids, fr, path_ids, fp, mesh.positions, zip, mesh.faces);
+    counts.quads += n.quads;
+    counts.triangles += n.triangles;
+  }
+  return counts;
+}
+
+}  // namespace hm::structured

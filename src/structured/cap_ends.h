@@ -1,0 +1,23 @@
+// The ends of the hull beyond the first and last stations (the stem and the stern or transom):
+// each is zipped between its end row and the surface's boundary path beyond it.
+#pragma once
+
+#include <vector>
+
+#include "structured/structured_steps.h"
+
+namespace hm::structured {
+
+struct CapCounts {
+  std::size_t quads = 0, triangles = 0, unmatched = 0;
+};
+
+// Appends the cap faces (and the new boundary nodes, fixed) to mesh and slots. An end whose row
+// has more than one curve, or whose ends do not lie on one boundary loop of the surface, is left
+// open and counted in unmatched.
+CapCounts cap_ends(const SurfaceMesh& surface, std::span<const Row> rows,
+                   std::span<const RowNodes> nodes,
+                   std::span<const std::vector<Index>> first_vertex, const Metric& metric,
+                   const ZipOptions& zip, SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
+
+}  // namespace hm::structured

@@ -1,0 +1,235 @@
+// Station planning: where the rows go. A node that walks one panel size along the hull, normal to
+// its row, must reach the next station, so stations crowd where the hull turns away from x (the
+// stem, a bulb, a sonar dome, the forefoot) and keep the panel length x elsewhere. Sampled
+// sections estimate that walk; stations are then placed by equidistribution between the border
+// stations (the ends and the cut stations), which are fixed first.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/bbox.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "structured/structured_steps.h"
+
+namespace hm::structured {
+namespace {
+
+// At most this many points of a sampled section take part in the walk estimate.
+constexpr std::size_t kWalkPoints = 48;
+// A station step never falls below this share of the panel length in x: beyond it, the ends
+// are left to the caps.
+constexpr double kMinStepShare = 0.2;
+// Automatic cuts make blocks at least this many panel lengths long.
+constexpr double kMinBlockPanels = 3;
+
+struct Sample {
+  double x = 0;
+  std::vector<Vec3d> points;              // subsampled section points, every polyline
+  std::vector<std::vector<Vec3d>> lines;  // the section polylines, whole
+  bool empty() const { return points.empty(); }
+};
+
+// The point of the polylines nearest q.
+Vec3d nearest_on_lines(const std::vector<std::vector<Vec3d>>& lines, const Vec3d& q) {
+  Vec3d best = q;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const std::vector<Vec3d>& l : lines) {
+    for (std::size_t i = 0; i < l.size(); ++i) {
+      const Vec3d& a = l[i];
+      const Vec3d d = i + 1 < l.size() ? l[i + 1] - a : Vec3d{0, 0, 0};
+      const double dd = squared_norm(d);
+      const double f = dd > 0 ? std::clamp(dot(q - a, d) / dd, 0.0, 1.0) : 0.0;
+      const Vec3d p = a + d * f;
+      const double dist = squared_norm(p - q);
+      if (dist < best_d) {
+        best_d = dist;
+        best = p;
+      }
+    }
+  }
+  return best;
+}
+
+std::vector<Sample> sample_sections(const HullQuery& query, double x0, double x1,
+                                    std::size_t count) {
+  std::vector<Plane> planes(count);
+  std::vector<Sample> samples(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double x = x0 + (x1 - x0) * (static_cast<double>(k) + 0.5) / static_cast<double>(count);
+    samples[k].x = x;
+    planes[k] = Plane{{x, 0, 0}, {1, 0, 0}};
+  }
+  SectionOptions so;
+  so.refine = false;  // a planning estimate: the triangulation is within its chord error
+  const std::vector<Section> secs = query.sections(planes, so);
+  parallel_for_each_item(count, [&](std::size_t k) {
+    std::size_t total = 0;
+    for (const SectionPolyline& pl : secs[k].polylines) total += pl.points.size();
+    const std::size_t stride = std::max<std::size_t>(1, total / kWalkPoints);
+    std::size_t i = 0;
+    for (const SectionPolyline& pl : secs[k].polylines) {
+      std::vector<Vec3d>& line = samples[k].lines.emplace_back();
+      for (const SectionPoint& sp : pl.points) {
+        line.push_back(sp.point);
+        if (i++ % stride == 0) samples[k].points.push_back(sp.point);
+      }
+      if (pl.closed && !pl.points.empty()) line.push_back(pl.points.front().point);
+    }
+  });
+  return samples;
+}
+
+// How far in x a node of sample a gets when it walks one panel size towards sample b: the
+// smallest ratio of x advance to walked (metric) length over a's points.
+double walk_step(const Sample& a, const Sample& b, const Metric& metric) {
+  double step = std::numeric_limits<double>::infinity();
+  const double dx = std::abs(b.x - a.x);
+  for (const Vec3d& p : a.points) {
+    const double best = metric.length(p, nearest_on_lines(b.lines, p));
+    if (best > 0 && std::isfinite(best)) step = std::min(step, dx / best);
+  }
+  return step;
+}
+
+// The largest lateral move of a's points to b's, per metre of x: near zero in the parallel
+// middle body.
+double section_change(const Sample& a, const Sample& b) {
+  double worst = 0;
+  for (const Vec3d& p : a.points) {
+    const Vec3d q = nearest_on_lines(b.lines, p);
+    worst = std::max(worst, std::hypot(q.y - p.y, q.z - p.z));
+  }
+  return worst / std::max(std::abs(b.x - a.x), 1e-300);
+}
+
+// Adds x to cuts unless a cut lies within `gap` already.
+void add_cut(std::vector<double>& cuts, double x, double gap) {
+  for (double c : cuts)
+    if (std::abs(c - x) < gap) return;
+  cuts.push_back(x);
+}
+
+}  // namespace
+
+StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
+                          const SurfaceMesh& surface, const Metric& metric,
+                          const StructuredOptions& options) {
+  const BBox3d box = query.bbox();
+  const double length = box.hi.x - box.lo.x;
+  if (!(length > 0)) throw GeometryError("structured: the hull has no length along x");
+  const double hx = metric.size.x;
+  const std::size_t count =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(6 * length / hx)), 64, 4000);
+  const std::vector<Sample> samples = sample_sections(query, box.lo.x, box.hi.x, count);
+
+  // The ends: the first and last samples that cut the hull.
+  std::size_t first = 0, last = count;
+  while (first < count && samples[first].empty()) ++first;
+  while (last > first && samples[last - 1].empty()) --last;
+  if (last - first < 2) throw GeometryError("structured: no station plane cuts the hull");
+
+  // Step limit at each sample (m of x per panel), from the walk to the next sample.
+  std::vector<double> step(count, hx);
+  for (std::size_t k = first; k + 1 < last; ++k) {
+    const double size_x = metric.size_at(samples[k].points.front()).x;
+    const double w = std::min(walk_step(samples[k], samples[k + 1], metric),
+                              walk_step(samples[k + 1], samples[k], metric));
+    step[k] = std::clamp(std::isfinite(w) ? w : size_x, kMinStepShare * size_x, size_x);
+  }
+  step[last - 1] = step[last - 2];
+
+  // The end stations: about one panel in from the ends (the caps take that panel), and never
+  // beyond the last sample that cuts the hull.
+  const double x_first = std::max(samples[first].x, box.lo.x + step[first]);
+  const double x_last = std::min(samples[last - 1].x, box.hi.x - step[last - 1]);
+  if (!(x_last > x_first)) throw GeometryError("structured: the hull is shorter than one panel");
+  // Cut stations: the user's x planes, then the automatic ones.
+  // Cuts closer than this merge: a block is at least a few panels long.
+  const double gap = kMinBlockPanels * hx;
+  std::vector<double> cuts;
+  for (const BlockPlane& p : options.planes) {
+    const Vec3d n = normalized(p.normal);
+    if (std::abs(std::abs(n.x) - 1) > 1e-6) continue;  // a lateral plane, handled by the rows
+    if (p.point.x > x_first + 0.5 * hx && p.point.x < x_last - 0.5 * hx) {
+      add_cut(cuts, p.point.x, 1e-9 * length);
+    }
+  }
+  if (options.auto_blocks) {
+    // Where a knuckle starts or ends: a row changes its breakpoints there.
+    for (const FeatureLine& k : features.knuckles) {
+      if (k.closed || k.vertices.empty()) continue;
+      for (Index v : {k.vertices.front(), k.vertices.back()}) {
+        const double x = surface.positions[v].x;
+        if (x > x_first + gap && x < x_last - gap) add_cut(cuts, x, gap);
+      }
+    }
+    // The parallel middle body (sections that change by under 2% of a metre per metre) and the
+    // regions where stations must crowd (a step under 60% of the panel length): their ends.
+    std::vector<std::uint8_t> parallel(count, 0), crowded(count, 0);
+    for (std::size_t k = first; k + 1 < last; ++k) {
+      parallel[k] = section_change(samples[k], samples[k + 1]) < 0.02;
+      crowded[k] = step[k] < 0.6 * hx;
+    }
+    for (const auto* flags : {&parallel, &crowded}) {
+      const bool need_long = flags == &parallel;
+      std::size_t k = first;
+      while (k < last) {
+        if (!(*flags)[k]) {
+          ++k;
+          continue;
+        }
+        std::size_t e = k;
+        while (e < last && (*flags)[e]) ++e;
+        const double x0 = samples[k].x, x1 = samples[e - 1].x;
+        if (x1 - x0 > (need_long ? 0.1 * length : kMinBlockPanels * hx)) {
+          for (double x : {x0, x1}) {
+            if (x > x_first + gap && x < x_last - gap) add_cut(cuts, x, gap);
+          }
+        }
+        k = e;
+      }
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+
+  // Border stations, then stations between them by equidistributing the integral of 1 / step.
+  std::vector<double> borders{x_first};
+  borders.insert(borders.end(), cuts.begin(), cuts.end());
+  borders.push_back(x_last);
+  const double dxs = (box.hi.x - box.lo.x) / static_cast<double>(count);
+  auto density = [&](double x) {
+    const double f = (x - box.lo.x) / dxs - 0.5;
+    const std::size_t k = std::clamp<std::size_t>(
+        static_cast<std::size_t>(std::max(0.0, std::round(f))), first, last - 1);
+    return 1 / step[k];
+  };
+  StationPlan plan;
+  plan.cuts = cuts.size();
+  for (std::size_t b = 0; b + 1 < borders.size(); ++b) {
+    const double x0 = borders[b], x1 = borders[b + 1];
+    // Integrate the density on a fine grid, then invert it.
+    constexpr int kSub = 256;
+    std::vector<double> cum(kSub + 1, 0);
+    for (int i = 0; i < kSub; ++i) {
+      const double xm = x0 + (x1 - x0) * (i + 0.5) / kSub;
+      cum[i + 1] = cum[i] + density(xm) * (x1 - x0) / kSub;
+    }
+    const int n = std::max(1, static_cast<int>(std::lround(cum.back())));
+    plan.x.push_back(x0);
+    plan.border.push_back(1);
+    for (int j = 1; j < n; ++j) {
+      const double target = cum.back() * j / n;
+      const auto it = std::lower_bound(cum.begin(), cum.end(), target);
+      const int i = std::clamp(static_cast<int>(it - cum.begin()), 1, kSub);
+      const double f = (target - cum[i - 1]) / std::max(cum[i] - cum[i - 1], 1e-300);
+      plan.x.push_back(x0 + (x1 - x0) * (i - 1 + f) / kSub);
+      plan.border.push_back(0);
+    }
+  }
+  plan.x.push_back(x_last);
+  plan.border.push_back(1);
+  return plan;
+}
+
+}  // namespace hm::structured

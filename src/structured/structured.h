@@ -1,0 +1,98 @@
+// The paper's structured path: multi-block panel meshes grown row by row on a hull surface.
+//
+// Rows are the hull's sections by station planes x = const, refined onto the NURBS. Blocks are
+// bounded by cut stations (user planes, or automatic ones), by knuckle lines and lateral cut
+// planes (waterlines z = c, buttocks y = c, any plane not normal to x) that split every row, and
+// by the hull's own boundaries (keel and centre plane, waterline cut, deck). Border rows are
+// meshed first and shared; inside a block each row is grown from the one before it, every node
+// walking along the hull in the plane normal to its row until it meets the next station; then
+// consecutive rows are zipped into quads, and into triangles where the node counts differ or a
+// quad would be twisted.
+//
+// Frame: the ship frame (x forward, y to port, z up), metres. The surface is the merged hull as
+// the unstructured path prepares it (waterplane and centre-plane cuts applied).
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "core/vec.h"
+#include "mesh/adjacency.h"
+#include "mesh/surface_mesh.h"
+#include "nurbs/patch.h"
+#include "unstructured/features.h"
+
+namespace hm {
+
+class HullQuery;
+
+// A plane that splits the hull into blocks. A plane normal to x (within 1e-6) is a cut station;
+// any other plane splits every row where it crosses it (a lateral border).
+struct BlockPlane {
+  Vec3d point;
+  Vec3d normal;
+  std::string name;
+};
+
+// Panel sizes wanted inside a box (the paper's "values in these three directions"); the first
+// box that holds a row point wins, and the global size applies elsewhere.
+struct SizeBox {
+  Vec3d lo, hi;  // m
+  Vec3d size;    // m along x, y, z; each > 0
+  std::string name;
+};
+
+struct StructuredOptions {
+  // Panel edge lengths along x, y and z (m). Zero: all three from target_panels.
+  Vec3d size{0, 0, 0};
+  std::size_t target_panels = 2000;  // used when size is zero
+  std::vector<BlockPlane> planes;    // user block planes
+  std::vector<SizeBox> size_boxes;   // user block sizes
+  // Automatic blocks: cut stations where a knuckle or a boundary run starts or ends, at the ends
+  // of the parallel middle body, and around regions where the sections change fast.
+  bool auto_blocks = true;
+  // A quad whose shorter opposite side is below this fraction of the longer one, or whose warp
+  // exceeds max_warp (corner distance from the mean plane over the mean diagonal), becomes two
+  // triangles (split along its shorter diagonal).
+  double min_opposite_ratio = 0.35;
+  double max_warp = 0.08;
+  int relax_passes = 8;  // constrained smoothing passes (0: none)
+};
+
+// What one block became.
+struct BlockReport {
+  Index id = 0;
+  double x0 = 0, x1 = 0;     // station range, m
+  std::string lower, upper;  // what bounds it across the rows (keel, knuckle 2, plane "WL1", ...)
+  std::size_t rows = 0, quads = 0, triangles = 0;
+  double seconds = 0;
+};
+
+struct StructuredReport {
+  Vec3d size;  // the panel sizes used, m
+  std::size_t stations = 0, cut_stations = 0;
+  std::size_t quads = 0, triangles = 0, cap_triangles = 0, cap_quads = 0;
+  std::size_t split_twisted = 0;   // quads made into two triangles
+  std::size_t rows_unmatched = 0;  // strips whose rows could not be paired (left open)
+  std::vector<BlockReport> blocks;
+  double seconds_plan = 0, seconds_rows = 0, seconds_grow = 0, seconds_relax = 0;
+};
+
+struct StructuredMesh {
+  SurfaceMesh mesh;  // quads and triangles; face_patch and face_block filled
+  std::vector<std::array<Index, 2>> knuckle_edges;  // panel edges on knuckle lines
+  StructuredReport report;
+};
+
+// plan -> rows -> grow blocks (in parallel) -> zip -> caps -> relax -> orient. surface: the
+// merged hull (triangles, vertex_patch and vertex_uv filled), adjacency and features of it;
+// query: built on the same surface. Deterministic and thread-count independent. Throws
+// UsageError for impossible options and GeometryError when the hull has no rows to grow.
+StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
+                               const HullQuery& query, const FeatureSet& features,
+                               const StructuredOptions& options);
+
+}  // namespace hm

@@ -1,0 +1,126 @@
+// The steps of mesh_structured and the data they pass along. Private to src/structured.
+//
+// A row is the hull cut by one station plane x = const: one or more curves, each an ordered
+// polyline on the NURBS running up from its lower end (keel or centre plane) to its upper end
+// (waterline or deck). Breakpoints split a curve where a knuckle line or a lateral block plane
+// crosses it; they and the curve's ends become nodes of every row, so blocks meet node to node.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "core/vec.h"
+#include "query/hull_query.h"
+#include "structured/structured.h"
+
+namespace hm::structured {
+
+// Lengths measured in panel sizes: |d|_M = |(dx / size.x, dy / size.y, dz / size.z)|.
+struct Metric {
+  Vec3d size{1, 1, 1};
+  std::vector<SizeBox> boxes;
+  // The sizes that apply at p (the first box holding p, else the global size).
+  Vec3d size_at(const Vec3d& p) const;
+  double length(const Vec3d& a, const Vec3d& b) const;
+};
+
+// What a breakpoint is: a curve's lower or upper end, a knuckle (index into
+// FeatureSet::knuckles) or a lateral block plane (index into StructuredOptions::planes).
+enum class BreakKind : std::uint8_t { kLow, kKnuckle, kPlane, kHigh };
+struct BreakLabel {
+  BreakKind kind = BreakKind::kLow;
+  Index id = 0;
+  bool operator==(const BreakLabel&) const = default;
+};
+std::string to_string(const BreakLabel& b);
+
+struct Breakpoint {
+  double s = 0;     // metric arc length along the curve
+  Index point = 0;  // the curve point it sits on
+  BreakLabel label;
+};
+
+struct RowCurve {
+  std::vector<Vec3d> points;  // on the NURBS and on the station plane
+  std::vector<PatchId> patch;
+  std::vector<Vec2d> uv;
+  std::vector<double> s;           // metric arc length from points[0], ascending
+  std::vector<Breakpoint> breaks;  // ascending in s; the two ends included
+  double length() const { return s.empty() ? 0 : s.back(); }
+  // Position, patch and (u, v) at arc length t (clamped), linear between points.
+  Vec3d at(double t) const;
+  void locate(double t, std::size_t& seg, double& frac) const;
+  // Arc length of the first crossing of the plane (p, n) by the curve, searching from near t0;
+  // NaN when the curve does not cross it.
+  double crossing(const Vec3d& p, const Vec3d& n, double t0) const;
+};
+
+struct Row {
+  double x = 0;
+  bool border = false;  // a cut station or an end: meshed first, shared by two columns
+  std::vector<RowCurve> curves;
+};
+
+// Nodes on a row: per curve, ascending arc lengths (both ends and every breakpoint included).
+struct RowNodes {
+  std::vector<std::vector<double>> s;
+};
+
+// --- plan ---------------------------------------------------------------------------------
+struct StationPlan {
+  std::vector<double> x;             // ascending
+  std::vector<std::uint8_t> border;  // 1 at cut stations and at both ends
+  std::size_t cuts = 0;
+};
+// Stations from the aft end to the forward end: spaced so that a node walking the panel size
+// along the hull, normal to its row, reaches the next station; cut stations included.
+StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
+                          const SurfaceMesh& surface, const Metric& metric,
+                          const StructuredOptions& options);
+
+// --- rows ---------------------------------------------------------------------------------
+// The hull's sections at the planned stations, refined on the NURBS, split at knuckles and
+// lateral planes. Parallel over stations.
+std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface,
+                              const FeatureSet& features, std::span<const BlockPlane> planes,
+                              const StationPlan& plan, const Metric& metric);
+
+// --- grow ---------------------------------------------------------------------------------
+// Places the nodes of every row. Border rows get evenly spaced nodes between their breakpoints;
+// each row after a border row is grown from the one before: its nodes walk along the hull in
+// the plane normal to their row until they meet the next station, then nodes are merged or
+// added where the row is shorter or longer than the count it needs, and blended towards even
+// spacing. Columns (runs between border rows) grow in parallel.
+std::vector<RowNodes> grow_rows(std::span<const Row> rows, const Metric& metric);
+
+// --- zip ----------------------------------------------------------------------------------
+// One strip of panels between two node chains a and b (global vertex ids, with arc-length
+// fractions in [0, 1] along each), a running along the aft row and b along the forward one.
+// Faces are (a_i, a_i+1, b_k+1, b_k) quads, or triangles where one side advances alone.
+struct ZipOptions {
+  double min_opposite_ratio = 0.35;
+  double max_warp = 0.08;
+};
+struct ZipCounts {
+  std::size_t quads = 0, triangles = 0, split = 0;
+};
+ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::span<const Index> b,
+                     std::span<const double> fb, std::span<const Vec3d> positions,
+                     const ZipOptions& options, std::vector<Face>& faces);
+
+// --- relax --------------------------------------------------------------------------------
+// Point relocation: every free node (not a breakpoint, not on a border row) moves along its row
+// curve towards the mean of its mesh neighbours. rows/nodes give each vertex's curve.
+struct NodeSlot {
+  Index row = kInvalid, curve = 0;
+  double s = 0;
+  bool fixed = true;
+};
+void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span<const Face> faces,
+                 std::vector<Vec3d>& positions, int passes);
+
+}  // namespace hm::structured

@@ -1,0 +1,231 @@
+// The structured mesher on generated hulls: a closed, consistently oriented, mostly quad panel
+// mesh of the wetted hull whose rows lie on station planes and on the NURBS, whose block borders
+// conform, whose knuckle nodes lie on the knuckles, and which comes out the same with 1 and 2
+// threads.
+#include "structured/structured.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "mesh/adjacency.h"
+#include "nurbs/generate_hull.h"
+#include "quality/quality_report.h"
+#include "query/hull_query.h"
+#include "tessellate/tessellate.h"
+#include "unstructured/cut_at_plane.h"
+#include "unstructured/features.h"
+#include "unstructured/merge.h"
+
+namespace hm {
+namespace {
+
+struct Wetted {
+  GeneratedHull hull;
+  Tessellation tess;
+  MergedSurface merged;
+  PlaneCut cut;
+  EdgeAdjacency adj;
+  FeatureSet features;
+  std::unique_ptr<HullQuery> query;
+};
+
+// A generated half hull tessellated at L / 200, merged, cut at its design draft, with its features.
+std::unique_ptr<Wetted> wetted(HullKind kind, int patches) {
+  auto w = std::make_unique<Wetted>();
+  HullSpec spec;
+  spec.kind = kind;
+  spec.patches = patches;
+  w->hull = generate_hull(spec);
+  TessellateOptions o;
+  o.edge_length = 0.5;
+  w->tess = tessellate(w->hull.patches, o, silent_progress());
+  w->merged = merge_patches(w->hull.patches, w->tess.mesh, {}, silent_progress());
+  PlaneCutOptions co;
+  co.value = spec.draft;
+  w->cut = cut_at_plane(w->hull.patches, w->merged.mesh, co);
+  w->adj = build_edge_adjacency(w->cut.mesh.faces, w->cut.mesh.vertex_count());
+  FeatureOptions fo;
+  fo.waterline_z = spec.draft;
+  w->features = find_features(w->cut.mesh, w->adj, w->hull.patches, fo);
+  w->query = std::make_unique<HullQuery>(w->hull.patches, w->cut.mesh);
+  return w;
+}
+
+StructuredMesh mesh(const Wetted& w, const StructuredOptions& o) {
+  return mesh_structured(w.hull.patches, w.cut.mesh, *w.query, w.features, o);
+}
+
+QualityReport quality(const StructuredMesh& m, double waterline) {
+  QualityOptions qo;
+  qo.waterline_z = waterline;
+  qo.knuckle_edges = m.knuckle_edges;
+  return assess_quality(m.mesh, qo);
+}
+
+TEST(Structured, WigleyIsClosedMostlyQuadsAndMeetsTheSideRatioRule) {
+  const auto w = wetted(HullKind::kWigley, 12);
+  StructuredOptions o;
+  o.target_panels = 1000;
+  const StructuredMesh m = mesh(*w, o);
+  const QualityReport q = quality(m, 6.25);
+  EXPECT_GT(m.mesh.face_count(), 700u);
+  EXPECT_LT(m.mesh.face_count(), 1400u);
+  // 92% today; the rest are count changes between rows (issue 6 asks for 90% on DTMB 5415).
+  EXPECT_GE(double(q.quads) / double(q.faces), 0.9);
+  EXPECT_GE(q.side_ratio_share, 0.98);
+  EXPECT_GE(q.normal_angle_share, 0.98);
+  EXPECT_EQ(q.topology.nonmanifold_edges, 0u);
+  EXPECT_EQ(q.topology.free_edges_below, 0u);
+  EXPECT_TRUE(q.topology.orientation_consistent);
+  EXPECT_TRUE(q.topology.normals_into_fluid);
+  EXPECT_EQ(m.report.rows_unmatched, 0u);
+  // Every face names its patch and block.
+  ASSERT_EQ(m.mesh.face_patch.size(), m.mesh.face_count());
+  ASSERT_EQ(m.mesh.face_block.size(), m.mesh.face_count());
+  for (std::size_t f = 0; f < m.mesh.face_count(); ++f) {
+    EXPECT_LT(m.mesh.face_patch[f], w->hull.patches.size());
+    EXPECT_LT(m.mesh.face_block[f], m.report.blocks.size());
+  }
+}
+
+TEST(Structured, RowNodesLieOnStationPlanesAndOnTheNurbs) {
+  const auto w = wetted(HullKind::kWigley, 4);
+  StructuredOptions o;
+  o.target_panels = 600;
+  const StructuredMesh m = mesh(*w, o);
+  // The distinct x of the vertices: one per station (caps add boundary nodes between the end
+  // stations and the hull ends only).
+  std::set<double> xs;
+  double x_first = 1e300, x_last = -1e300;
+  for (const Vec3d& p : m.mesh.positions) xs.insert(p.x);
+  std::vector<double> stations;
+  for (double x : xs) {
+    std::size_t on = 0;
+    for (const Vec3d& p : m.mesh.positions) on += p.x == x;
+    if (on >= 3) stations.push_back(x);
+  }
+  ASSERT_GE(stations.size(), m.report.stations);
+  x_first = stations.front();
+  x_last = stations.back();
+  // Wigley: y = B/2 (1 - (2x/L - 1)^2) (1 - (z/T)^2) on the exact surface (x from 0 to L).
+  double worst = 0;
+  for (const Vec3d& p : m.mesh.positions) {
+    if (p.x < x_first || p.x > x_last) continue;
+    const double xi = 2 * p.x / 100 - 1, zeta = 1 - p.z / 6.25;  // z up from the keel
+    worst = std::max(worst, std::abs(p.y - 5 * (1 - xi * xi) * (1 - zeta * zeta)));
+  }
+  EXPECT_LT(worst, 1e-6 * 100) << "row nodes off the Wigley surface";
+}
+
+TEST(Structured, WaterlinePlaneSplitsEveryRowIntoConformingBlocks) {
+  const auto w = wetted(HullKind::kWigley, 4);
+  StructuredOptions o;
+  o.target_panels = 800;
+  o.auto_blocks = false;
+  o.planes.push_back({{0, 0, 3.0}, {0, 0, 1}, "WL 3"});
+  o.planes.push_back({{50, 0, 0}, {1, 0, 0}, "midship"});
+  const StructuredMesh m = mesh(*w, o);
+  EXPECT_EQ(m.report.cut_stations, 1u);
+  // Two columns by two girth blocks, plus the caps.
+  std::size_t bounded_by_plane = 0;
+  for (const BlockReport& b : m.report.blocks)
+    bounded_by_plane += b.upper == "plane 0" || b.lower == "plane 0";
+  EXPECT_EQ(bounded_by_plane, 4u);
+  // Every station has a node on the plane z = 3 (to the fine chord error): blocks meet there.
+  std::size_t on_plane = 0;
+  for (const Vec3d& p : m.mesh.positions) on_plane += std::abs(p.z - 3.0) < 1e-3;
+  EXPECT_GE(on_plane, m.report.stations);
+  // Conforming: no free edge below the waterline, none used three times.
+  const QualityReport q = quality(m, 6.25);
+  EXPECT_EQ(q.topology.free_edges_below, 0u);
+  EXPECT_EQ(q.topology.nonmanifold_edges, 0u);
+  // There are panels on both sides of the midship station.
+  std::size_t aft = 0, fwd = 0;
+  for (const Face& f : m.mesh.faces) {
+    const double x = face_centroid(m.mesh.positions, f).x;
+    (x < 50 ? aft : fwd)++;
+  }
+  EXPECT_GT(aft, 100u);
+  EXPECT_GT(fwd, 100u);
+}
+
+TEST(Structured, ChineNodesLieOnTheKnuckle) {
+  const auto w = wetted(HullKind::kChine, 24);
+  ASSERT_FALSE(w->features.knuckles.empty());
+  StructuredOptions o;
+  o.target_panels = 1200;
+  const StructuredMesh m = mesh(*w, o);
+  ASSERT_GT(m.knuckle_edges.size(), 50u);
+  // Each knuckle-edge vertex lies on the surface's knuckle polyline (the fine mesh's chine
+  // edges, whose vertices are on the NURBS), within the fine chord tolerance.
+  double worst = 0;
+  for (const auto& e : m.knuckle_edges) {
+    for (Index v : e) {
+      const Vec3d& p = m.mesh.positions[v];
+      double best = 1e300;
+      for (const FeatureLine& k : w->features.knuckles) {
+        for (std::size_t i = 0; i + 1 < k.vertices.size(); ++i) {
+          const Vec3d a = w->cut.mesh.positions[k.vertices[i]];
+          const Vec3d d = w->cut.mesh.positions[k.vertices[i + 1]] - a;
+          const double t = std::clamp(dot(p - a, d) / std::max(squared_norm(d), 1e-300), 0.0, 1.0);
+          best = std::min(best, norm(a + d * t - p));
+        }
+      }
+      worst = std::max(worst, best);
+    }
+  }
+  EXPECT_LT(worst, 1e-3 * 100);
+  const QualityReport q = quality(m, 6.25);
+  EXPECT_EQ(q.topology.nonmanifold_edges, 0u);
+  EXPECT_TRUE(q.topology.orientation_consistent);
+  // No panel straddles the chine: the normal-angle rule holds away from the knuckle edges.
+  EXPECT_GE(q.normal_angle_share, 0.97);
+}
+
+TEST(Structured, SameBytesWithOneAndTwoThreads) {
+  const auto w = wetted(HullKind::kRoundBilge, 24);
+  StructuredOptions o;
+  o.target_panels = 1500;
+  StructuredMesh one, two;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    one = mesh(*w, o);
+  }
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+    two = mesh(*w, o);
+  }
+  ASSERT_EQ(one.mesh.positions.size(), two.mesh.positions.size());
+  ASSERT_EQ(one.mesh.faces, two.mesh.faces);
+  for (std::size_t v = 0; v < one.mesh.positions.size(); ++v) {
+    ASSERT_EQ(one.mesh.positions[v], two.mesh.positions[v]) << v;
+  }
+  EXPECT_EQ(one.mesh.face_block, two.mesh.face_block);
+}
+
+TEST(Structured, PanelSizesFollowTheUserBoxes) {
+  const auto w = wetted(HullKind::kWigley, 4);
+  StructuredOptions coarse;
+  coarse.size = {2, 1, 1};
+  const std::size_t base = mesh(*w, coarse).mesh.face_count();
+  StructuredOptions fine_bow = coarse;
+  fine_bow.size_boxes.push_back({{75, -10, -10}, {110, 10, 10}, {1, 0.5, 0.5}, "bow"});
+  const StructuredMesh m = mesh(*w, fine_bow);
+  // The forward quarter has four times the panels: the total grows by well over half.
+  EXPECT_GT(m.mesh.face_count(), base * 3 / 2);
+  std::size_t bow = 0, stern = 0;
+  for (const Face& f : m.mesh.faces) {
+    const double x = face_centroid(m.mesh.positions, f).x;
+    bow += x > 80;
+    stern += x < 20;
+  }
+  EXPECT_GT(bow, 3 * stern);
+}
+
+}  // namespace
+}  // namespace hm
