@@ -86,12 +86,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   if (c.symmetry == "full" && is_half_hull(panels, ph.centre_tol)) {
     mirrored = mirror_half_hull(panels, ph.centre_tol);
     output = &mirrored->mesh;
-    std::vector<Index> twin(panels.vertex_count());
-    for (std::size_t v = 0; v < twin.size(); ++v) twin[v] = static_cast<Index>(v);
-    for (std::size_t v = twin.size(); v < mirrored->vert_new2old.size(); ++v) {
-      twin[mirrored->vert_new2old[v]] = static_cast<Index>(v);
-    }
-    for (const auto& [a, b] : sm.knuckle_edges) knuckle_edges.push_back({twin[a], twin[b]});
+    const auto images = mirrored_edges(*mirrored, panels.vertex_count(), sm.knuckle_edges);
+    knuckle_edges.insert(knuckle_edges.end(), images.begin(), images.end());
   }
   QualityOptions qo;
   qo.knuckle_edges = knuckle_edges;

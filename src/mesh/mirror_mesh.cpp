@@ -71,4 +71,17 @@ MirroredMesh mirror_half_hull(const SurfaceMesh& half, double on_plane_tol) {
   return out;
 }
 
+std::vector<std::array<Index, 2>> mirrored_edges(const MirroredMesh& m, std::size_t half_vertices,
+                                                 std::span<const std::array<Index, 2>> edges) {
+  std::vector<Index> twin(half_vertices);
+  for (std::size_t v = 0; v < twin.size(); ++v) twin[v] = static_cast<Index>(v);
+  for (std::size_t v = half_vertices; v < m.vert_new2old.size(); ++v) {
+    twin[m.vert_new2old[v]] = static_cast<Index>(v);
+  }
+  std::vector<std::array<Index, 2>> out;
+  out.reserve(edges.size());
+  for (const auto& [a, b] : edges) out.push_back({twin[a], twin[b]});
+  return out;
+}
+
 }  // namespace hm

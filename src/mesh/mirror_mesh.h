@@ -2,6 +2,8 @@
 // that take no symmetry flag.
 #pragma once
 
+#include <array>
+#include <span>
 #include <vector>
 
 #include "core/types.h"
@@ -24,5 +26,10 @@ bool is_half_hull(const SurfaceMesh& mesh, double tol);
 // keep their patch and block. Throws GeometryError when vertices lie on both sides of y = 0 beyond
 // the tolerance (not a half hull).
 MirroredMesh mirror_half_hull(const SurfaceMesh& half, double on_plane_tol);
+
+// The mirror images of edges of the half (vertex pairs), for a mesh mirror_half_hull made from a
+// half with half_vertices vertices. A vertex on y = 0 is its own image.
+std::vector<std::array<Index, 2>> mirrored_edges(const MirroredMesh& m, std::size_t half_vertices,
+                                                 std::span<const std::array<Index, 2>> edges);
 
 }  // namespace hm

@@ -160,7 +160,7 @@ RowNodes grow_one(const Row& prev, const RowNodes& prev_nodes, const Row& next) 
 
 }  // namespace
 
-std::vector<RowNodes> grow_rows(std::span<const Row> rows, const Metric& metric) {
+std::vector<RowNodes> grow_rows(std::span<const Row> rows) {
   std::vector<RowNodes> nodes(rows.size());
   std::vector<std::size_t> borders;
   for (std::size_t j = 0; j < rows.size(); ++j) {

@@ -110,7 +110,7 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   rep.seconds_rows = seconds_since(t);
 
   t = clock::now();
-  const std::vector<RowNodes> nodes = grow_rows(rows, metric);
+  const std::vector<RowNodes> nodes = grow_rows(rows);
 
   // Vertices, row by row, curve by curve, node by node.
   SurfaceMesh& mesh = out.mesh;
@@ -258,7 +258,7 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
     br.id = static_cast<Index>(rep.blocks.size());
     br.lower = "hull ends";
     br.upper = "stations " + std::to_string(0) + " and " + std::to_string(rows.size() - 1);
-    br.x0 = surface.positions.empty() ? 0 : query.bbox().lo.x;
+    br.x0 = query.bbox().lo.x;
     br.x1 = query.bbox().hi.x;
     for (std::size_t f = before_caps; f < mesh.faces.size(); ++f) {
       ++(is_triangle(mesh.faces[f]) ? br.triangles : br.quads);

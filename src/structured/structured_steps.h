@@ -95,7 +95,7 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
 // the plane normal to their row until they meet the next station, then nodes are merged or
 // added where the row is shorter or longer than the count it needs, and blended towards even
 // spacing. Columns (runs between border rows) grow in parallel.
-std::vector<RowNodes> grow_rows(std::span<const Row> rows, const Metric& metric);
+std::vector<RowNodes> grow_rows(std::span<const Row> rows);
 
 // --- zip ----------------------------------------------------------------------------------
 // One strip of panels between two node chains a and b (global vertex ids, with arc-length
