@@ -1,8 +1,9 @@
-// Rows: the hull's sections at the planned stations, refined onto the NURBS, measured in panel
-// sizes, and split where knuckle lines and lateral block planes cross them.
+// Rows: the hull's sections at the planned stations, refined onto the NURBS, split where knuckle
+// lines and lateral block planes cross them, and measured in panels.
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "core/parallel.h"
 #include "structured/structured_steps.h"
@@ -14,8 +15,12 @@ namespace {
 constexpr double kBreakMerge = 0.3;
 // The largest turn of a row across one panel, radians (10 degrees).
 constexpr double kMaxTurnPerPanel = 10 * M_PI / 180;
-constexpr double kCornerTurn = 25 * M_PI / 180;
+// Chord length (panels) over which a row's turning is measured: section points sit wherever the
+// fine mesh's edges cross the plane, and angles between their uneven little segments are noise.
+constexpr double kTurnChord = 0.25;
 constexpr double kTinyStep = 1e-9;  // m
+// Knuckle chains that meet end to end turning by less than this are one line (degrees).
+constexpr double kContinueDeg = 45;
 
 RowCurve make_curve(const SectionPolyline& pl, const Metric& metric) {
   RowCurve c;
@@ -27,24 +32,65 @@ RowCurve make_curve(const SectionPolyline& pl, const Metric& metric) {
     c.patch.push_back(sp.patch);
     c.uv.push_back(sp.uv);
   }
-  // Each step counts as the larger of its metric length and its share of the turning (half of
-  // the turn at either end over kMaxTurnPerPanel): a tight bilge gets panels enough that
-  // neighbouring normals stay close.
-  std::vector<double> turn(n, 0);
-  for (std::size_t i = 1; i + 1 < n; ++i) {
-    const Vec3d a = c.points[i] - c.points[i - 1], b = c.points[i + 1] - c.points[i];
-    const double na = norm(a), nb = norm(b);
-    if (!(na > kTinyStep && nb > kTinyStep)) continue;  // a doubled point turns nothing
-    const double t = std::acos(std::clamp(dot(a, b) / (na * nb), -1.0, 1.0));
-    // A sharper turn is a corner (a knuckle, a breakpoint), not curvature to resolve.
-    if (t < kCornerTurn) turn[i] = t;
-  }
+  // Metric length for now; grade_by_turning rewrites it once the breakpoints are known.
   c.s.assign(n, 0);
-  for (std::size_t i = 1; i < n; ++i) {
-    const double by_turn = 0.5 * (turn[i - 1] + turn[i]) / kMaxTurnPerPanel;
-    c.s[i] = c.s[i - 1] + std::max(metric.length(c.points[i - 1], c.points[i]), by_turn);
-  }
+  for (std::size_t i = 1; i < n; ++i)
+    c.s[i] = c.s[i - 1] + metric.length(c.points[i - 1], c.points[i]);
   return c;
+}
+
+// Rewrites the measure of points first..last (their metric lengths in c.s, from `base`) so that
+// each stretch counts at least one panel per kMaxTurnPerPanel of turning; returns the measure at
+// `last`.
+double grade_stretch(RowCurve& c, std::size_t first, std::size_t last, double base) {
+  const double g0 = c.s[first], total = c.s[last] - g0;
+  if (!(total > 0)) {
+    for (std::size_t i = first; i <= last; ++i) c.s[i] = base;
+    return base;
+  }
+  const std::size_t kc =
+      std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(total / kTurnChord)));
+  const double step = total / static_cast<double>(kc);
+  std::vector<Vec3d> q(kc + 1);
+  for (std::size_t k = 0, i = first; k <= kc; ++k) {
+    const double t = std::min(g0 + step * static_cast<double>(k), c.s[last]);
+    while (i + 1 < last && c.s[i + 1] < t) ++i;
+    const double len = c.s[i + 1] - c.s[i];
+    const double f = len > 0 ? std::clamp((t - c.s[i]) / len, 0.0, 1.0) : 0.0;
+    q[k] = c.points[i] * (1 - f) + c.points[i + 1] * f;
+  }
+  std::vector<double> turn(kc + 1, 0);
+  for (std::size_t k = 1; k < kc; ++k) {
+    const Vec3d a = q[k] - q[k - 1], b = q[k + 1] - q[k];
+    const double na = norm(a), nb = norm(b);
+    if (na > kTinyStep && nb > kTinyStep) {
+      turn[k] = std::acos(std::clamp(dot(a, b) / (na * nb), -1.0, 1.0));
+    }
+  }
+  std::vector<double> measure(kc + 1, base);
+  for (std::size_t k = 0; k < kc; ++k) {
+    const double by_turn = 0.5 * (turn[k] + turn[k + 1]) / kMaxTurnPerPanel;
+    measure[k + 1] = measure[k] + std::max(step, by_turn);
+  }
+  std::vector<double> out(last - first + 1);
+  for (std::size_t i = first; i <= last; ++i) {
+    const double kf = (c.s[i] - g0) / step;
+    const std::size_t k = std::min(static_cast<std::size_t>(std::max(kf, 0.0)), kc - 1);
+    out[i - first] = measure[k] + (kf - static_cast<double>(k)) * (measure[k + 1] - measure[k]);
+  }
+  for (std::size_t i = first; i <= last; ++i) c.s[i] = out[i - first];
+  return measure[kc];
+}
+
+// The measure along the row: metric length, but at least one panel per kMaxTurnPerPanel of
+// turning (a tight bilge gets panels enough that neighbouring normals stay close), taken
+// stretch by stretch between breakpoints so that a knuckle's corner counts for nothing.
+void grade_by_turning(RowCurve& c) {
+  double base = 0;
+  for (std::size_t b = 0; b + 1 < c.breaks.size(); ++b) {
+    base = grade_stretch(c, c.breaks[b].point, c.breaks[b + 1].point, base);
+  }
+  for (Breakpoint& b : c.breaks) b.s = c.s[b.point];
 }
 
 // Inserts a point at arc length t (linear between its neighbours) and returns its index.
@@ -74,8 +120,51 @@ bool near_break(const RowCurve& c, double t) {
   return false;
 }
 
+// One id per knuckle line: chains that the feature finder split at a corner but that run on
+// straight through it (a chine that a patch corner interrupts) share the smallest chain index.
+std::vector<Index> knuckle_groups(const SurfaceMesh& surface, const FeatureSet& features) {
+  const std::size_t n = features.knuckles.size();
+  std::vector<Index> parent(n);
+  std::iota(parent.begin(), parent.end(), Index{0});
+  auto find = [&](Index a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  // The direction a chain leaves its end e (0: first vertex, 1: last), pointing out of it.
+  auto out_dir = [&](const FeatureLine& l, int e) {
+    const std::size_t m = l.vertices.size();
+    const Vec3d& end = surface.positions[e == 0 ? l.vertices[0] : l.vertices[m - 1]];
+    const Vec3d& in = surface.positions[e == 0 ? l.vertices[std::min<std::size_t>(1, m - 1)]
+                                               : l.vertices[m >= 2 ? m - 2 : 0]];
+    return normalized(end - in);
+  };
+  const double cos_limit = std::cos(kContinueDeg * M_PI / 180);
+  for (std::size_t a = 0; a < n; ++a) {
+    const FeatureLine& la = features.knuckles[a];
+    if (la.closed || la.vertices.size() < 2) continue;
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const FeatureLine& lb = features.knuckles[b];
+      if (lb.closed || lb.vertices.size() < 2) continue;
+      for (int ea = 0; ea < 2; ++ea) {
+        for (int eb = 0; eb < 2; ++eb) {
+          const Index va = ea == 0 ? la.vertices.front() : la.vertices.back();
+          const Index vb = eb == 0 ? lb.vertices.front() : lb.vertices.back();
+          if (va != vb) continue;
+          // Straight on: a leaves the corner the way b enters it.
+          if (-dot(out_dir(la, ea), out_dir(lb, eb)) >= cos_limit) {
+            parent[find(static_cast<Index>(b))] = find(static_cast<Index>(a));
+          }
+        }
+      }
+    }
+  }
+  std::vector<Index> group(n);
+  for (std::size_t k = 0; k < n; ++k) group[k] = find(static_cast<Index>(k));
+  return group;
+}
+
 void add_knuckle_breaks(RowCurve& c, double x, const SurfaceMesh& surface,
-                        const FeatureSet& features, double tol) {
+                        const FeatureSet& features, std::span<const Index> group, double tol) {
   for (std::size_t k = 0; k < features.knuckles.size(); ++k) {
     const FeatureLine& line = features.knuckles[k];
     const std::size_t n = line.vertices.size();
@@ -98,8 +187,7 @@ void add_knuckle_breaks(RowCurve& c, double x, const SurfaceMesh& surface,
         }
       }
       if (std::sqrt(best_d) > tol || near_break(c, c.s[best])) continue;
-      c.breaks.push_back(
-          {c.s[best], static_cast<Index>(best), {BreakKind::kKnuckle, static_cast<Index>(k)}});
+      c.breaks.push_back({c.s[best], static_cast<Index>(best), {BreakKind::kKnuckle, group[k]}});
     }
   }
 }
@@ -130,6 +218,7 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
   for (std::size_t j = 0; j < cut.size(); ++j) cut[j] = Plane{{plan.x[j], 0, 0}, {1, 0, 0}};
   const std::vector<Section> secs = query.sections(cut);
   const double tol = 1e-3 * query.length_scale();
+  const std::vector<Index> group = knuckle_groups(surface, features);
   std::vector<Row> rows(plan.x.size());
   parallel_for_each_item(rows.size(), [&](std::size_t j) {
     Row& row = rows[j];
@@ -143,10 +232,11 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       const Index last = static_cast<Index>(c.points.size() - 1);
       c.breaks.push_back({0, 0, {BreakKind::kLow, 0}});
       c.breaks.push_back({c.s.back(), last, {BreakKind::kHigh, 0}});
-      add_knuckle_breaks(c, row.x, surface, features, tol);
+      add_knuckle_breaks(c, row.x, surface, features, group, tol);
       add_plane_breaks(c, planes);
       std::sort(c.breaks.begin(), c.breaks.end(),
                 [](const Breakpoint& a, const Breakpoint& b) { return a.s < b.s; });
+      grade_by_turning(c);
       row.curves.push_back(std::move(c));
     }
   });

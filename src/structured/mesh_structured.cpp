@@ -269,6 +269,7 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
 
   t = clock::now();
   relax_nodes(rows, slots, mesh.faces, mesh.positions, options.relax_passes);
+  rep.quality_moves = improve_nodes(rows, slots, mesh.faces, mesh.positions, options.relax_passes);
   rep.seconds_relax = seconds_since(t);
 
   // Row nodes back onto the exact NURBS (still on their station plane): they were placed on the

@@ -76,6 +76,7 @@ struct StructuredReport {
   std::size_t quads = 0, triangles = 0, cap_triangles = 0, cap_quads = 0;
   std::size_t split_twisted = 0;   // quads made into two triangles
   std::size_t rows_unmatched = 0;  // strips whose rows could not be paired (left open)
+  std::size_t quality_moves = 0;   // node moves kept by the quality-driven relocation
   std::vector<BlockReport> blocks;
   double seconds_plan = 0, seconds_rows = 0, seconds_grow = 0, seconds_relax = 0;
 };

@@ -123,4 +123,11 @@ struct NodeSlot {
 void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span<const Face> faces,
                  std::vector<Vec3d>& positions, int passes);
 
+// Relocation with quality as the objective: each free node in turn tries a few moves along its
+// row and keeps the one that most lowers the worst rule value around it (neighbour area ratio
+// over 2, quad side ratio over 4). Gauss-Seidel in vertex order, so deterministic. Returns the
+// number of moves kept.
+std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
+                          std::span<const Face> faces, std::vector<Vec3d>& positions, int passes);
+
 }  // namespace hm::structured
