@@ -119,6 +119,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         "  quads split into triangles (twisted or distorted): %zu; end caps: %zu quads, "
         "%zu triangles\n",
         r.split_twisted, r.cap_quads, r.cap_triangles);
+    if (r.transoms > 0) {
+      std::printf("  transom: the end cap follows its knuckle (%zu end%s)\n", r.transoms,
+                  r.transoms == 1 ? "" : "s");
+    }
     if (r.rows_unmatched > 0) {
       std::printf("  WARNING: %zu strips between rows could not be paired and are left open\n",
                   r.rows_unmatched);
@@ -142,7 +146,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                 quality.max_normal_angle_deg);
     std::printf("  quad warp: max %.3g (corner height / mean diagonal); knuckle edges %zu\n",
                 quality.max_warp, quality.knuckle_edges);
-    std::printf("  deviation from the NURBS: max %.3g m, mean %.3g m\n", dev.max, dev.mean);
+    std::printf("  deviation from the NURBS: max %.3g m at (%.4g, %.4g, %.4g), mean %.3g m\n",
+                dev.max, dev.where.x, dev.where.y, dev.where.z, dev.mean);
     std::printf(
         "  topology: %zu boundary loops, %zu non-manifold edges, %zu free edges below "
         "the waterline, orientation %s\n",

@@ -10,14 +10,17 @@ namespace hm::structured {
 
 struct CapCounts {
   std::size_t quads = 0, triangles = 0, unmatched = 0;
+  std::size_t transoms = 0;  // ends closed through a transverse knuckle (a transom's edge)
 };
 
-// Appends the cap faces (and the new boundary nodes, fixed) to mesh and slots. An end whose row
-// has more than one curve, or whose ends do not lie on one boundary loop of the surface, is left
-// open and counted in unmatched.
-CapCounts cap_ends(const SurfaceMesh& surface, std::span<const Row> rows,
-                   std::span<const RowNodes> nodes,
+// Appends the cap faces (and the new boundary nodes, fixed) to mesh and slots. Where a knuckle
+// crosses the end region from one side of its boundary to the other (a transom's edge), the cap
+// is two strips: row to knuckle, and knuckle to the boundary beyond, so no panel straddles it.
+// An end whose row has more than one curve, or whose ends do not lie on one boundary loop of the
+// surface, is left open and counted in unmatched.
+CapCounts cap_ends(const SurfaceMesh& surface, const FeatureSet& features,
+                   std::span<const Row> rows, std::span<const RowNodes> nodes,
                    std::span<const std::vector<Index>> first_vertex, const Metric& metric,
-                   const ZipOptions& zip, SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
+                   const ZipOptions& zip_options, SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
 
 }  // namespace hm::structured

@@ -21,6 +21,9 @@ constexpr double kTurnChord = 0.25;
 constexpr double kTinyStep = 1e-9;  // m
 // Knuckle chains that meet end to end turning by less than this are one line (degrees).
 constexpr double kContinueDeg = 45;
+// A row's curve shorter than both of these is a fragment (panels; share of the longest curve).
+constexpr double kFragmentPanels = 3;
+constexpr double kFragmentShare = 0.15;
 
 RowCurve make_curve(const SectionPolyline& pl, const Metric& metric) {
   RowCurve c;
@@ -209,6 +212,17 @@ void add_plane_breaks(RowCurve& c, std::span<const BlockPlane> planes) {
   }
 }
 
+// Drops a row's fragments: curves under kFragmentPanels long and under kFragmentShare of its
+// longest curve. A station that grazes a raked transom or a skeg cuts off such a sliver; the
+// strips on either side cover its surface, and a sliver row of its own would pair with nothing.
+void drop_fragments(Row& row) {
+  double longest = 0;
+  for (const RowCurve& c : row.curves) longest = std::max(longest, c.length());
+  std::erase_if(row.curves, [&](const RowCurve& c) {
+    return c.length() < kFragmentPanels && c.length() < kFragmentShare * longest;
+  });
+}
+
 }  // namespace
 
 std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface,
@@ -239,6 +253,7 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       grade_by_turning(c);
       row.curves.push_back(std::move(c));
     }
+    drop_fragments(row);
   });
   return rows;
 }

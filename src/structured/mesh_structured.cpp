@@ -131,8 +131,8 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
         mesh.vertex_uv.push_back(curve.patch[k] == curve.patch[k + 1]
                                      ? curve.uv[k] * (1 - f) + curve.uv[k + 1] * f
                                      : (f < 0.5 ? curve.uv[k] : curve.uv[k + 1]));
-        slots.push_back(
-            {static_cast<Index>(j), static_cast<Index>(c), s, rows[j].border || on_break});
+        slots.push_back({static_cast<Index>(j), static_cast<Index>(c), s,
+                         rows[j].border || on_break, on_break});
       }
     }
   }
@@ -249,9 +249,11 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
 
   // The ends of the hull beyond the first and last stations.
   const std::size_t before_caps = mesh.faces.size();
-  const CapCounts caps = cap_ends(surface, rows, nodes, first_vertex, metric, zo, mesh, slots);
+  const CapCounts caps =
+      cap_ends(surface, features, rows, nodes, first_vertex, metric, zo, mesh, slots);
   rep.cap_quads = caps.quads;
   rep.cap_triangles = caps.triangles;
+  rep.transoms = caps.transoms;
   rep.rows_unmatched += caps.unmatched;
   if (mesh.faces.size() > before_caps) {
     BlockReport br;
@@ -281,7 +283,9 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   });
   parallel_for(0, slots.size(), [&](std::size_t v) {
     const NodeSlot& n = slots[v];
-    if (n.row == kInvalid) return;  // a cap node on the surface's boundary
+    // Cap nodes lie on the surface's boundary, breakpoints on a section point, the waterline or a
+    // knuckle: refining would only move them off it.
+    if (n.row == kInvalid || n.on_break) return;
     const RowCurve& c = rows[n.row].curves[n.curve];
     std::size_t k;
     double f;

@@ -118,7 +118,8 @@ ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::
 struct NodeSlot {
   Index row = kInvalid, curve = 0;
   double s = 0;
-  bool fixed = true;
+  bool fixed = true;      // relocation leaves it (border rows, breakpoints, cap nodes)
+  bool on_break = false;  // a curve end, knuckle or plane crossing: exact as it stands
 };
 void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span<const Face> faces,
                  std::vector<Vec3d>& positions, int passes);

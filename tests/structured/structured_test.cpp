@@ -19,6 +19,7 @@
 #include "tessellate/tessellate.h"
 #include "unstructured/cut_at_plane.h"
 #include "unstructured/features.h"
+#include "unstructured/measure_deviation.h"
 #include "unstructured/merge.h"
 
 namespace hm {
@@ -182,9 +183,15 @@ TEST(Structured, ChineNodesLieOnTheKnuckle) {
   EXPECT_LT(worst, 1e-3 * 100);
   const QualityReport q = quality(m, 6.25);
   EXPECT_EQ(q.topology.nonmanifold_edges, 0u);
+  EXPECT_EQ(q.topology.free_edges_below, 0u);
   EXPECT_TRUE(q.topology.orientation_consistent);
   // No panel straddles the chine: the normal-angle rule holds away from the knuckle edges.
   EXPECT_GE(q.normal_angle_share, 0.97);
+  // The transom's edge is a knuckle too: the aft cap follows it, so no panel cuts across the
+  // corner between transom and hull (one would stand 0.3 m off the NURBS).
+  EXPECT_EQ(m.report.transoms, 1u);
+  const DeviationMeasure dev = measure_deviation(*w->query, m.mesh);
+  EXPECT_LT(dev.max, 1e-3 * 100);
 }
 
 TEST(Structured, SameBytesWithOneAndTwoThreads) {

@@ -1,0 +1,175 @@
+// The structured mesher over a size ladder: a generated 48-patch round-bilge half hull, cut at its
+// design draft, meshed by mesh_structured to about 2,000, 8,000 and 32,000 panels at 1 and 2
+// threads (items/s: output panels per second). The surface is prepared once per size, untimed, as
+// `hullmesh structured` prepares it: 20 fine triangles per panel (40,000 to 1,000,000),
+// tessellated, merged, cut at the draft, its features found and a HullQuery built on it. Then one
+// strip zip (zip_chains) on its own. After the runs, main() prints, from the runs just made, the
+// 1 -> 2 thread speed-up per size and whether both thread counts gave the same mesh (they must:
+// the mesher is documented as thread-count independent).
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mesh/adjacency.h"
+#include "nurbs/generate_hull.h"
+#include "query/hull_query.h"
+#include "structured/structured.h"
+#include "structured/structured_steps.h"
+#include "tessellate/tessellate.h"
+#include "unstructured/cut_at_plane.h"
+#include "unstructured/features.h"
+#include "unstructured/merge.h"
+
+namespace hm {
+namespace {
+
+// As `hullmesh structured` sizes its internal surface (src/cli/command_structured.cpp).
+constexpr std::size_t kFinePerPanel = 20, kFineMin = 40'000, kFineMax = 1'000'000;
+
+// The wetted half hull, in metres, ship frame, keel at z = 0 (cut at z = draft).
+struct Wetted {
+  GeneratedHull hull;
+  PlaneCut cut;
+  FeatureSet features;
+  std::unique_ptr<HullQuery> query;
+};
+
+const GeneratedHull& hull() {
+  static const GeneratedHull h = [] {
+    HullSpec spec;
+    spec.kind = HullKind::kRoundBilge;
+    spec.patches = 48;
+    return generate_hull(spec);
+  }();
+  return h;
+}
+
+// Prepared once per panel count, at the machine's full parallelism.
+const Wetted& wetted(std::size_t panels) {
+  static std::map<std::size_t, std::unique_ptr<Wetted>> cache;
+  auto it = cache.find(panels);
+  if (it != cache.end()) return *it->second;
+  auto w = std::make_unique<Wetted>();
+  w->hull = hull();
+  const double draft = HullSpec{}.draft;
+  TessellateOptions o;
+  o.edge_length = edge_length_for_triangles(
+      w->hull.patches, std::clamp(kFinePerPanel * panels, kFineMin, kFineMax));
+  const Tessellation t = tessellate(w->hull.patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(w->hull.patches, t.mesh, {}, silent_progress());
+  PlaneCutOptions co;
+  co.value = draft;
+  w->cut = cut_at_plane(w->hull.patches, merged.mesh, co);
+  const EdgeAdjacency adj = build_edge_adjacency(w->cut.mesh.faces, w->cut.mesh.vertex_count());
+  FeatureOptions fo;
+  fo.waterline_z = draft;
+  w->features = find_features(w->cut.mesh, adj, w->hull.patches, fo);
+  w->query = std::make_unique<HullQuery>(w->hull.patches, w->cut.mesh);
+  return *cache.emplace(panels, std::move(w)).first->second;
+}
+
+StructuredMesh run(const Wetted& w, std::size_t panels) {
+  StructuredOptions o;
+  o.target_panels = panels;
+  return mesh_structured(w.hull.patches, w.cut.mesh, *w.query, w.features, o);
+}
+
+// What each (panels, threads) run gave, for the summary: best wall time and the last mesh.
+struct Seen {
+  double best_s = 1e300;
+  SurfaceMesh mesh;
+};
+std::map<std::pair<std::size_t, int>, Seen>& seen() {
+  static std::map<std::pair<std::size_t, int>, Seen> s;
+  return s;
+}
+
+// Args: target panels, threads.
+void BM_MeshStructured(benchmark::State& state) {
+  const std::size_t target = static_cast<std::size_t>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  const Wetted& w = wetted(target);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<std::size_t>(threads));
+  Seen& s = seen()[{target, threads}];
+  StructuredMesh m;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    m = run(w, target);
+    s.best_s = std::min(
+        s.best_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  const std::size_t panels = m.mesh.face_count();
+  state.counters["panels"] = static_cast<double>(panels);
+  state.counters["quads"] = static_cast<double>(m.report.quads + m.report.cap_quads);
+  state.counters["stations"] = static_cast<double>(m.report.stations);
+  state.counters["fine_triangles"] = static_cast<double>(w.cut.mesh.face_count());
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(panels));
+  s.mesh = std::move(m.mesh);
+}
+BENCHMARK(BM_MeshStructured)
+    ->ArgNames({"panels", "threads"})
+    ->ArgsProduct({{2'000, 8'000, 32'000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// One strip: a chain of n + 1 nodes zipped against one of n + n / 10 + 1 (a row that grew by a
+// tenth), both straight and parallel, one panel apart. Items: faces made.
+void BM_ZipChains(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0)), m = n + n / 10;
+  std::vector<Vec3d> pos;
+  std::vector<Index> a, b;
+  std::vector<double> fa, fb;
+  for (int i = 0; i <= n; ++i) {
+    a.push_back(static_cast<Index>(pos.size()));
+    fa.push_back(double(i) / n);
+    pos.push_back({0, double(i), 0});
+  }
+  for (int k = 0; k <= m; ++k) {
+    b.push_back(static_cast<Index>(pos.size()));
+    fb.push_back(double(k) / m);
+    pos.push_back({1, double(k) * n / m, 0});
+  }
+  std::vector<Face> faces;
+  for (auto _ : state) {
+    faces.clear();
+    benchmark::DoNotOptimize(structured::zip_chains(a, fa, b, fb, pos, {}, faces));
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(faces.size()));
+}
+BENCHMARK(BM_ZipChains)->Arg(100)->Arg(10'000);
+
+void print_summary() {
+  std::printf("\nmesh_structured, generated round-bilge (48 patches) at its draft, best wall time:\n");
+  std::printf("  %8s %8s %10s %10s %9s %12s\n", "target", "panels", "1 thread", "2 threads",
+              "speed-up", "same mesh");
+  for (std::size_t target : {2'000u, 8'000u, 32'000u}) {
+    auto one = seen().find({target, 1}), two = seen().find({target, 2});
+    if (one == seen().end() || two == seen().end()) continue;
+    const SurfaceMesh &m1 = one->second.mesh, &m2 = two->second.mesh;
+    const bool same = m1.faces == m2.faces && m1.positions == m2.positions;
+    std::printf("  %8zu %8zu %9.3fs %9.3fs %8.2fx %12s\n", target, m1.face_count(),
+                one->second.best_s, two->second.best_s, one->second.best_s / two->second.best_s,
+                same ? "yes" : ("NO (" + std::to_string(m2.face_count()) + " panels)").c_str());
+  }
+}
+
+}  // namespace
+}  // namespace hm
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  hm::print_summary();
+  return 0;
+}
