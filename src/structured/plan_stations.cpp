@@ -131,12 +131,15 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
 
   // Step limit at each sample (m of x per panel), from the walk to the next sample.
   std::vector<double> step(count, hx);
-  for (std::size_t k = first; k + 1 < last; ++k) {
-    const double size_x = metric.size_at(samples[k].points.front()).x;
-    const double w = std::min(walk_step(samples[k], samples[k + 1], metric),
-                              walk_step(samples[k + 1], samples[k], metric));
-    step[k] = std::clamp(std::isfinite(w) ? w : size_x, kMinStepShare * size_x, size_x);
-  }
+  parallel_for(
+      first, last - 1,
+      [&](std::size_t k) {
+        const double size_x = metric.size_at(samples[k].points.front()).x;
+        const double w = std::min(walk_step(samples[k], samples[k + 1], metric),
+                                  walk_step(samples[k + 1], samples[k], metric));
+        step[k] = std::clamp(std::isfinite(w) ? w : size_x, kMinStepShare * size_x, size_x);
+      },
+      4, 16);
   step[last - 1] = step[last - 2];
 
   // The end stations: about one panel in from the ends (the caps take that panel), and never
@@ -167,10 +170,13 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
     // The parallel middle body (sections that change by under 2% of a metre per metre) and the
     // regions where stations must crowd (a step under 60% of the panel length): their ends.
     std::vector<std::uint8_t> parallel(count, 0), crowded(count, 0);
-    for (std::size_t k = first; k + 1 < last; ++k) {
-      parallel[k] = section_change(samples[k], samples[k + 1]) < 0.02;
-      crowded[k] = step[k] < 0.6 * hx;
-    }
+    parallel_for(
+        first, last - 1,
+        [&](std::size_t k) {
+          parallel[k] = section_change(samples[k], samples[k + 1]) < 0.02;
+          crowded[k] = step[k] < 0.6 * hx;
+        },
+        4, 16);
     for (const auto* flags : {&parallel, &crowded}) {
       const bool need_long = flags == &parallel;
       std::size_t k = first;
