@@ -1,11 +1,13 @@
 // Rows: the hull's sections at the planned stations, refined onto the NURBS, split where knuckle
 // lines and lateral block planes cross them, and measured in panels.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
 #include "core/parallel.h"
+#include "mesh/adjacency.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -34,6 +36,11 @@ RowCurve make_curve(const SectionPolyline& pl, const Metric& metric) {
     c.points.push_back(sp.point);
     c.patch.push_back(sp.patch);
     c.uv.push_back(sp.uv);
+  }
+  c.z_min = c.z_max = c.points.front().z;
+  for (const Vec3d& p : c.points) {
+    c.z_min = std::min(c.z_min, p.z);
+    c.z_max = std::max(c.z_max, p.z);
   }
   // Metric length for now; grade_by_turning rewrites it once the breakpoints are known.
   c.s.assign(n, 0);
@@ -223,6 +230,29 @@ void drop_fragments(Row& row) {
   });
 }
 
+// Puts a curve's end exactly where the station plane crosses the surface's nearest boundary edge
+// (within tol): the section refines its points onto the NURBS, which a waterplane cut left a
+// little way off, and a row's ends must lie on the waterline and the centre plane exactly.
+void snap_end(Vec3d& end, double x, const SurfaceMesh& surface,
+              std::span<const std::array<Index, 2>> boundary, double tol) {
+  double best = tol;
+  Vec3d at = end;
+  for (const auto& [a, b] : boundary) {
+    const Vec3d& pa = surface.positions[a];
+    const Vec3d& pb = surface.positions[b];
+    if ((pa.x - x) * (pb.x - x) > 0 || pa.x == pb.x) continue;
+    const double f = (x - pa.x) / (pb.x - pa.x);
+    Vec3d p = pa * (1 - f) + pb * f;
+    p.x = x;
+    const double d = norm(p - end);
+    if (d < best) {
+      best = d;
+      at = p;
+    }
+  }
+  end = at;
+}
+
 }  // namespace
 
 std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface,
@@ -233,6 +263,11 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
   const std::vector<Section> secs = query.sections(cut);
   const double tol = 1e-3 * query.length_scale();
   const std::vector<Index> group = knuckle_groups(surface, features);
+  std::vector<std::array<Index, 2>> boundary;
+  {
+    const EdgeAdjacency adj = build_edge_adjacency(surface.faces, surface.vertex_count());
+    for (Index e : adj.boundary_edges) boundary.push_back({adj.edges[e].v0, adj.edges[e].v1});
+  }
   std::vector<Row> rows(plan.x.size());
   parallel_for_each_item(rows.size(), [&](std::size_t j) {
     Row& row = rows[j];
@@ -240,7 +275,12 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
     row.border = plan.border[j] != 0;
     for (const SectionPolyline& pl : secs[j].polylines) {
       if (pl.points.size() < 2) continue;
-      RowCurve c = make_curve(pl, metric);
+      SectionPolyline ends = pl;
+      if (!pl.closed) {
+        snap_end(ends.points.front().point, row.x, surface, boundary, tol);
+        snap_end(ends.points.back().point, row.x, surface, boundary, tol);
+      }
+      RowCurve c = make_curve(ends, metric);
       // Slivers of a section (a grazed patch corner) are not rows.
       if (c.length() < 0.05) continue;
       const Index last = static_cast<Index>(c.points.size() - 1);

@@ -295,8 +295,12 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
     const query::RefinedPlanePoint r =
         query::refine_plane_edge(patches[p].surface, domains[p], {1, 0, 0}, {rows[n.row].x, 0, 0},
                                  c.uv[k], c.uv[k + 1], f, mesh.positions[v], tol);
+    // The curve's z range holds it: the waterplane cut snapped the surface's last vertices onto
+    // the plane, and the exact NURBS can cross it a little way off, so a node near the waterline
+    // would otherwise rise above it.
     if (r.converged &&
-        squared_norm(r.point - mesh.positions[v]) < 1e-4 * metric.size.x * metric.size.x) {
+        squared_norm(r.point - mesh.positions[v]) < 1e-4 * metric.size.x * metric.size.x &&
+        r.point.z <= c.z_max && r.point.z >= c.z_min) {
       mesh.positions[v] = r.point;
       mesh.vertex_uv[v] = r.uv;
       mesh.vertex_patch[v] = p;

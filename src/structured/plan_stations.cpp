@@ -22,6 +22,8 @@ constexpr std::size_t kWalkPoints = 48;
 constexpr double kMinStepShare = 0.2;
 // Automatic cuts make blocks at least this many panel lengths long.
 constexpr double kMinBlockPanels = 3;
+// A cut station taken from a vertex's x sits this far (relative to L) beside it.
+constexpr double kOffVertex = 1e-5;
 
 struct Sample {
   double x = 0;
@@ -163,7 +165,9 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
     for (const FeatureLine& k : features.knuckles) {
       if (k.closed || k.vertices.empty()) continue;
       for (Index v : {k.vertices.front(), k.vertices.back()}) {
-        const double x = surface.positions[v].x;
+        // Just off the vertex: a station through a mesh vertex crosses its edges at their ends,
+        // where the section's refinement onto the NURBS has no bracket to hold it.
+        const double x = surface.positions[v].x + kOffVertex * length;
         if (x > x_first + gap && x < x_last - gap) add_cut(cuts, x, gap);
       }
     }

@@ -50,6 +50,7 @@ struct RowCurve {
   std::vector<Vec2d> uv;
   std::vector<double> s;           // metric arc length from points[0], ascending
   std::vector<Breakpoint> breaks;  // ascending in s; the two ends included
+  double z_min = 0, z_max = 0;     // of its points, m
   double length() const { return s.empty() ? 0 : s.back(); }
   // Position, patch and (u, v) at arc length t (clamped), linear between points.
   Vec3d at(double t) const;

@@ -571,6 +571,35 @@ TEST(CliStructured, WettedChineHullWithABlockFile) {
   EXPECT_NE(q.out.find("quads"), std::string::npos) << q.out;
 }
 
+// The shared Series 60 and DTMB 5415 at their waterline z = 0, automatic blocks, through
+// `hullmesh quality --json`.
+TEST(CliStructured, SharedHullsAtTheirWaterline) {
+  struct Case {
+    const char* file;
+    double min_quads, min_side_ratio;
+    std::size_t max_free_below;  // DTMB 5415's file leaves its transom open
+  };
+  for (const Case& c :
+       {Case{"series60.iges", 0.97, 0.98, 0}, Case{"dtmb5415.iges", 0.9, 0.9, 20}}) {
+    const fs::path hull = test::shared_hull(c.file);
+    if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
+    const fs::path out = test::scratch_dir("cli_structured_shared") / "panels.vtu";
+    const auto r = test::run_hullmesh("-q structured '" + hull.string() + "' -o '" + out.string() +
+                                      "' --panels 2000 --waterline-z 0 --auto-blocks");
+    ASSERT_EQ(r.exit_code, 0) << c.file << r.out;
+    const nlohmann::json q = quality_json(out);
+    const double faces = q["faces"].get<double>();
+    EXPECT_GT(faces, 1500) << c.file;
+    EXPECT_LT(faces, 3500) << c.file;
+    EXPECT_GE(q["quads"].get<double>() / faces, c.min_quads) << c.file;
+    EXPECT_GE(q["rules"]["side_ratio"]["share"].get<double>(), c.min_side_ratio) << c.file;
+    EXPECT_EQ(q["topology"]["nonmanifold_edges"].get<std::size_t>(), 0u) << c.file;
+    EXPECT_TRUE(q["topology"]["orientation_consistent"].get<bool>()) << c.file;
+    EXPECT_LE(q["topology"]["free_edges_below_waterline"].get<std::size_t>(), c.max_free_below)
+        << c.file;
+  }
+}
+
 TEST(CliStructured, BadBlockFileAndSizeAreRefusedBeforeMeshing) {
   const fs::path dir = test::scratch_dir("cli_structured_bad");
   const fs::path igs = dir / "w.igs", out = dir / "p.gdf", blocks = dir / "b.json";
