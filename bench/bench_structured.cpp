@@ -61,8 +61,8 @@ const Wetted& wetted(std::size_t panels) {
   w->hull = hull();
   const double draft = HullSpec{}.draft;
   TessellateOptions o;
-  o.edge_length = edge_length_for_triangles(
-      w->hull.patches, std::clamp(kFinePerPanel * panels, kFineMin, kFineMax));
+  o.edge_length = edge_length_for_triangles(w->hull.patches,
+                                            std::clamp(kFinePerPanel * panels, kFineMin, kFineMax));
   const Tessellation t = tessellate(w->hull.patches, o, silent_progress());
   const MergedSurface merged = merge_patches(w->hull.patches, t.mesh, {}, silent_progress());
   PlaneCutOptions co;
@@ -148,7 +148,8 @@ void BM_ZipChains(benchmark::State& state) {
 BENCHMARK(BM_ZipChains)->Arg(100)->Arg(10'000);
 
 void print_summary() {
-  std::printf("\nmesh_structured, generated round-bilge (48 patches) at its draft, best wall time:\n");
+  std::printf(
+      "\nmesh_structured, generated round-bilge (48 patches) at its draft, best wall time:\n");
   std::printf("  %8s %8s %10s %10s %9s %12s\n", "target", "panels", "1 thread", "2 threads",
               "speed-up", "same mesh");
   for (std::size_t target : {2'000u, 8'000u, 32'000u}) {
