@@ -29,8 +29,8 @@ namespace hm::cli {
 namespace {
 
 // Fine triangles per panel for the internal surface the rows are cut from.
-constexpr std::size_t kFinePerPanel = 20;
-constexpr std::size_t kFineMin = 40'000, kFineMax = 1'000'000;
+constexpr std::size_t kFinePerPanel = 10;
+constexpr std::size_t kFineMin = 20'000, kFineMax = 1'000'000;
 
 struct StructuredCommand {
   std::string file, output, units, blocks, size;

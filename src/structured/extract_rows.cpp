@@ -20,6 +20,7 @@ constexpr double kMaxTurnPerPanel = 10 * M_PI / 180;
 // Chord length (panels) over which a row's turning is measured: section points sit wherever the
 // fine mesh's edges cross the plane, and angles between their uneven little segments are noise.
 constexpr double kTurnChord = 0.25;
+constexpr double kMinTurnSpacing = 0.35;
 constexpr double kTinyStep = 1e-9;  // m
 // Knuckle chains that meet end to end turning by less than this are one line (degrees).
 constexpr double kContinueDeg = 45;
@@ -79,7 +80,10 @@ double grade_stretch(RowCurve& c, std::size_t first, std::size_t last, double ba
   }
   std::vector<double> measure(kc + 1, base);
   for (std::size_t k = 0; k < kc; ++k) {
-    const double by_turn = 0.5 * (turn[k] + turn[k + 1]) / kMaxTurnPerPanel;
+    // Never closer than kMinTurnSpacing panels: a skeg's edge turns half a circle in
+    // millimetres, and panels that narrow beside full-length ones break the side-ratio rule.
+    const double by_turn =
+        std::min(0.5 * (turn[k] + turn[k + 1]) / kMaxTurnPerPanel, step / kMinTurnSpacing);
     measure[k + 1] = measure[k] + std::max(step, by_turn);
   }
   std::vector<double> out(last - first + 1);

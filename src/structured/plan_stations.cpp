@@ -122,7 +122,7 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
   if (!(length > 0)) throw GeometryError("structured: the hull has no length along x");
   const double hx = metric.size.x;
   const std::size_t count =
-      std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(6 * length / hx)), 64, 4000);
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(4 * length / hx)), 64, 4000);
   const std::vector<Sample> samples = sample_sections(query, box.lo.x, box.hi.x, count);
 
   // The ends: the first and last samples that cut the hull.

@@ -101,6 +101,9 @@ namespace {
 
 // Share of a node's gap to its row neighbours that one trial move spans.
 constexpr double kTrialSteps[] = {-0.3, -0.15, 0.15, 0.3};
+// The objective's yardsticks: a little inside the rules' limits (4 and 2), so that a panel sitting
+// exactly on a limit (a count-change triangle has half its neighbour quad's area) is pushed in.
+constexpr double kSideTarget = 3.8, kAreaTarget = 1.9;
 
 double side_ratio(std::span<const Vec3d> p, const Face& f) {
   const int n = corner_count(f);
@@ -136,14 +139,15 @@ std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
     double worst = 0;
     for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
       const Index f = around[i];
-      if (!is_triangle(faces[f])) worst = std::max(worst, side_ratio(positions, faces[f]) / 4);
+      if (!is_triangle(faces[f]))
+        worst = std::max(worst, side_ratio(positions, faces[f]) / kSideTarget);
       for (int c = 0; c < corner_count(faces[f]); ++c) {
         const Index g = adj.opposite_face[4 * f + c];
         if (g == kInvalid) continue;
         const double a = area[f], b = area[g];
         const double r = std::min(a, b) > 0 ? std::max(a, b) / std::min(a, b)
                                             : std::numeric_limits<double>::infinity();
-        worst = std::max(worst, r / 2);
+        worst = std::max(worst, r / kAreaTarget);
       }
     }
     return worst;
