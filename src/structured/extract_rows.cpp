@@ -248,6 +248,9 @@ void snap_end(Vec3d& end, double x, const SurfaceMesh& surface,
     const double f = (x - pa.x) / (pb.x - pa.x);
     Vec3d p = pa * (1 - f) + pb * f;
     p.x = x;
+    // An edge on the waterplane or the centre plane keeps its coordinate exactly.
+    if (pa.y == pb.y) p.y = pa.y;
+    if (pa.z == pb.z) p.z = pa.z;
     const double d = norm(p - end);
     if (d < best) {
       best = d;

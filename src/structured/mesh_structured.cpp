@@ -290,11 +290,14 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
     std::size_t k;
     double f;
     c.locate(n.s, k, f);
-    if (c.patch[k] != c.patch[k + 1]) return;
-    const PatchId p = c.patch[k];
-    const query::RefinedPlanePoint r =
-        query::refine_plane_edge(patches[p].surface, domains[p], {1, 0, 0}, {rows[n.row].x, 0, 0},
-                                 c.uv[k], c.uv[k + 1], f, mesh.positions[v], tol);
+    // A segment across a patch border: refined on the nearer point's patch, from its (u, v)
+    // alone (the other end's belongs to another surface).
+    const bool same = c.patch[k] == c.patch[k + 1];
+    const std::size_t near = same || f < 0.5 ? k : k + 1;
+    const PatchId p = c.patch[near];
+    const query::RefinedPlanePoint r = query::refine_plane_edge(
+        patches[p].surface, domains[p], {1, 0, 0}, {rows[n.row].x, 0, 0}, c.uv[near],
+        same ? c.uv[k + 1] : c.uv[near], same ? f : 0.0, mesh.positions[v], tol);
     // The curve's z range holds it: the waterplane cut snapped the surface's last vertices onto
     // the plane, and the exact NURBS can cross it a little way off, so a node near the waterline
     // would otherwise rise above it.

@@ -115,15 +115,21 @@ TEST(Structured, RowNodesLieOnStationPlanesAndOnTheNurbs) {
   x_last = stations.back();
   // Wigley: y = B/2 (1 - (2x/L - 1)^2) (1 - (z/T)^2) on the exact surface (x from 0 to L).
   double worst = 0;
+  Vec3d where;
   for (const Vec3d& p : m.mesh.positions) {
     if (p.x < x_first || p.x > x_last) continue;
     // Row ends sit exactly on the waterplane and the centre plane, where the cut surface's
     // border crosses the station (within its chord error of the NURBS).
     if (p.z == 6.25 || p.y == 0) continue;
     const double xi = 2 * p.x / 100 - 1, zeta = 1 - p.z / 6.25;  // z up from the keel
-    worst = std::max(worst, std::abs(p.y - 5 * (1 - xi * xi) * (1 - zeta * zeta)));
+    const double d = std::abs(p.y - 5 * (1 - xi * xi) * (1 - zeta * zeta));
+    if (d > worst) {
+      worst = d;
+      where = p;
+    }
   }
-  EXPECT_LT(worst, 1e-6 * 100) << "row nodes off the Wigley surface";
+  EXPECT_LT(worst, 1e-6 * 100) << "row nodes off the Wigley surface at " << where.x << ", "
+                               << where.y << ", " << where.z;
 }
 
 TEST(Structured, WaterlinePlaneSplitsEveryRowIntoConformingBlocks) {
