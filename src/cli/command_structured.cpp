@@ -119,6 +119,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         "  quads split into triangles (twisted or distorted): %zu; end caps: %zu quads, "
         "%zu triangles\n",
         r.split_twisted, r.cap_quads, r.cap_triangles);
+    if (r.border_gaps > 0) {
+      std::printf("  %zu slivers between row ends and the hull's border filled by fans\n",
+                  r.border_gaps);
+    }
     if (r.transoms > 0) {
       std::printf("  transom: the end cap follows its knuckle (%zu end%s)\n", r.transoms,
                   r.transoms == 1 ? "" : "s");

@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "query/surface_refine.h"
 #include "structured/cap_ends.h"
+#include "structured/close_border_gaps.h"
 #include "structured/structured_steps.h"
 
 namespace hm {
@@ -248,6 +249,14 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   }
 
   // The ends of the hull beyond the first and last stations.
+  // Row ends, for the border gaps (after the caps, which add none).
+  std::vector<std::uint8_t> row_end(mesh.vertex_count(), 0);
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (std::size_t c = 0; c < rows[j].curves.size(); ++c) {
+      row_end[first_vertex[j][c]] = 1;
+      row_end[first_vertex[j][c] + nodes[j].s[c].size() - 1] = 1;
+    }
+  }
   const std::size_t before_caps = mesh.faces.size();
   const CapCounts caps =
       cap_ends(surface, features, rows, nodes, first_vertex, metric, zo, mesh, slots);
@@ -255,6 +264,9 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   rep.cap_triangles = caps.triangles;
   rep.transoms = caps.transoms;
   rep.rows_unmatched += caps.unmatched;
+  const GapCounts gaps = close_border_gaps(surface, row_end, metric, mesh, slots);
+  rep.border_gaps = gaps.gaps;
+  rep.cap_triangles += gaps.triangles;
   if (mesh.faces.size() > before_caps) {
     BlockReport br;
     br.id = static_cast<Index>(rep.blocks.size());

@@ -577,10 +577,10 @@ TEST(CliStructured, SharedHullsAtTheirWaterline) {
   struct Case {
     const char* file;
     double min_quads, min_side_ratio;
-    std::size_t max_free_below;  // DTMB 5415's file leaves its transom open
+    std::size_t max_free_below;
   };
   for (const Case& c :
-       {Case{"series60.iges", 0.97, 0.98, 0}, Case{"dtmb5415.iges", 0.9, 0.9, 20}}) {
+       {Case{"series60.iges", 0.97, 0.98, 0}, Case{"dtmb5415.iges", 0.9, 0.95, 0}}) {
     const fs::path hull = test::shared_hull(c.file);
     if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
     const fs::path out = test::scratch_dir("cli_structured_shared") / "panels.vtu";

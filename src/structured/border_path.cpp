@@ -1,0 +1,83 @@
+// Paths along the surface's boundary: where a point lies on it, the vertices between two such
+// places, and resampling at the panel size.
+#include "structured/border_path.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hm::structured {
+namespace {
+
+// A path point turning by more than this (degrees) is kept as a node.
+constexpr double kCornerDeg = 40;
+
+}  // namespace
+
+LoopSpot nearest_boundary_edge(const SurfaceMesh& s, const EdgeAdjacency& adj, const Vec3d& q) {
+  LoopSpot best;
+  for (std::size_t l = 0; l < adj.boundary_loops.size(); ++l) {
+    const std::vector<Index>& v = adj.boundary_loops[l].vertices;
+    for (std::size_t e = 0; e < v.size(); ++e) {
+      const Vec3d& a = s.positions[v[e]];
+      const Vec3d& b = s.positions[v[(e + 1) % v.size()]];
+      const Vec3d d = b - a;
+      const double dd = squared_norm(d);
+      const double f = dd > 0 ? std::clamp(dot(q - a, d) / dd, 0.0, 1.0) : 0.0;
+      const double dist = norm(a + d * f - q);
+      if (dist < best.distance) best = {l, e, dist};
+    }
+  }
+  return best;
+}
+
+// The loop vertices strictly between spots a and b, walking forwards or backwards.
+std::vector<Index> loop_path(const std::vector<Index>& v, std::size_t ea, std::size_t eb,
+                             bool forward) {
+  const std::size_t n = v.size();
+  std::vector<Index> out;
+  if (ea == eb) return out;  // both ends on one boundary edge: nothing between them
+  if (forward) {
+    for (std::size_t k = (ea + 1) % n;; k = (k + 1) % n) {
+      out.push_back(v[k]);
+      if (k == eb) break;
+    }
+  } else {
+    for (std::size_t k = ea;; k = (k + n - 1) % n) {
+      out.push_back(v[k]);
+      if (k == (eb + 1) % n) break;
+    }
+  }
+  return out;
+}
+
+// Resamples the polyline pts at about one panel per metric unit, keeping its corners; returns
+// the interior points (the two ends excluded).
+std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric) {
+  std::vector<std::size_t> keep{0};
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+    const Vec3d a = pts[i] - pts[i - 1], b = pts[i + 1] - pts[i];
+    const double na = norm(a), nb = norm(b);
+    if (na == 0 || nb == 0) continue;
+    if (dot(a, b) / (na * nb) < std::cos(kCornerDeg * M_PI / 180)) keep.push_back(i);
+  }
+  keep.push_back(pts.size() - 1);
+  std::vector<Vec3d> out;
+  for (std::size_t k = 0; k + 1 < keep.size(); ++k) {
+    std::vector<double> s{0};
+    for (std::size_t i = keep[k] + 1; i <= keep[k + 1]; ++i)
+      s.push_back(s.back() + metric.length(pts[i - 1], pts[i]));
+    const int n = std::max(1, static_cast<int>(std::lround(s.back())));
+    for (int j = 1; j < n; ++j) {
+      const double t = s.back() * j / n;
+      std::size_t i = 0;
+      while (i + 2 < s.size() && s[i + 1] < t) ++i;
+      const double len = s[i + 1] - s[i];
+      const double f = len > 0 ? (t - s[i]) / len : 0;
+      out.push_back(pts[keep[k] + i] * (1 - f) + pts[keep[k] + i + 1] * f);
+    }
+    if (k + 2 < keep.size()) out.push_back(pts[keep[k + 1]]);
+  }
+  return out;
+}
+
+}  // namespace hm::structured

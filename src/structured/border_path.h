@@ -1,0 +1,31 @@
+// Paths along the surface's boundary, shared by the end caps and the border-gap closing.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "mesh/adjacency.h"
+#include "structured/structured_steps.h"
+
+namespace hm::structured {
+
+// A place on the surface's boundary: the loop, the loop edge (joining vertices[edge] and
+// vertices[edge + 1]) and the distance from the query point (m).
+struct LoopSpot {
+  std::size_t loop = 0, edge = 0;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+LoopSpot nearest_boundary_edge(const SurfaceMesh& s, const EdgeAdjacency& adj, const Vec3d& q);
+
+// The loop vertices strictly between spots on loop edges ea and eb, walking forwards or
+// backwards; empty when both lie on one edge.
+std::vector<Index> loop_path(const std::vector<Index>& v, std::size_t ea, std::size_t eb,
+                             bool forward);
+
+// Resamples the polyline pts at about one panel per metric unit, keeping its corners (turns over
+// 40 degrees); returns the interior points (the two ends excluded).
+std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric);
+
+}  // namespace hm::structured
