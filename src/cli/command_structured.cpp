@@ -62,6 +62,9 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   pa.cut_centre_plane = c.symmetry == "half";
   pa.features = c.features;
   pa.quiet = g.quiet;
+  // The rows are cut from the NURBS, so a denser fine mesh costs only time: the structured
+  // mesher tries twice more before it gives up on a merge (issue 4's open failures).
+  pa.finer_retries = 2;
   pa.fine_triangles =
       c.triangles > 0 ? c.triangles
                       : std::clamp(kFinePerPanel * c.structured.target_panels, kFineMin, kFineMax);
@@ -119,6 +122,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         "  quads split into triangles (twisted or distorted): %zu; end caps: %zu quads, "
         "%zu triangles\n",
         r.split_twisted, r.cap_quads, r.cap_triangles);
+    if (r.rows_joined > 0) {
+      std::printf("  %zu strips between rows of different curve counts joined through the border\n",
+                  r.rows_joined);
+    }
     if (r.border_gaps > 0) {
       std::printf("  %zu slivers between row ends and the hull's border filled by fans\n",
                   r.border_gaps);

@@ -1,6 +1,7 @@
 #include "cli/prepare_hull.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "cli/load_hull.h"
 #include "core/bbox.h"
@@ -40,26 +41,46 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   out.seconds_import = seconds_since(t0);
   const std::span<const Patch> patches = out.patches();
 
-  TessellateOptions o = args.tessellate;
-  if (args.fine_triangles > 0 && o.edge_length <= 0) {
-    o.edge_length = edge_length_for_triangles(patches, args.fine_triangles);
-  }
-  out.tessellation = tessellate(patches, o, silent_progress());
-  out.merged = merge_patches(patches, out.tessellation.mesh, args.merge, silent_progress());
-  // The cuts before meshing: the waterplane, then the centre plane when one half of a full hull
-  // is wanted.
-  out.centre_tol = 2e-4 * hull_length(out.merged.mesh);
-  out.file_half = is_half_hull(out.merged.mesh, out.centre_tol);
-  if (out.floating) out.waterplane_cut = cut_at_plane(patches, out.fine(), {});
-  if (args.cut_centre_plane && !out.file_half) {
-    PlaneCutOptions co;
-    co.axis = 1;
-    co.keep_below = false;  // the port half, y >= 0
-    out.centre_cut = cut_at_plane(patches, out.fine(), co);
+  // The merge can leave an edge with three faces where three patch borders meet at a
+  // resolution that happens to split them badly (issue 4). Where the caller allows it, the fine
+  // mesh is made again twice as dense, and the retry is reported.
+  std::size_t triangles = args.fine_triangles;
+  for (int attempt = 0;; ++attempt) {
+    TessellateOptions o = args.tessellate;
+    if (triangles > 0 && o.edge_length <= 0)
+      o.edge_length = edge_length_for_triangles(patches, triangles);
+    out.tessellation = tessellate(patches, o, silent_progress());
+    out.merged = merge_patches(patches, out.tessellation.mesh, args.merge, silent_progress());
+    // The cuts before meshing: the waterplane, then the centre plane when one half of a full
+    // hull is wanted.
+    out.centre_tol = 2e-4 * hull_length(out.merged.mesh);
+    out.file_half = is_half_hull(out.merged.mesh, out.centre_tol);
+    out.waterplane_cut.reset();
+    out.centre_cut.reset();
+    if (out.floating) out.waterplane_cut = cut_at_plane(patches, out.fine(), {});
+    if (args.cut_centre_plane && !out.file_half) {
+      PlaneCutOptions co;
+      co.axis = 1;
+      co.keep_below = false;  // the port half, y >= 0
+      out.centre_cut = cut_at_plane(patches, out.fine(), co);
+    }
+    const SurfaceMesh& fine = out.fine();
+    out.adjacency = build_edge_adjacency(fine.faces, fine.vertex_count());
+    const bool retry =
+        !out.adjacency.nonmanifold_edges.empty() && triangles > 0 && attempt < args.finer_retries;
+    if (!retry) break;
+    if (!args.quiet) {
+      std::fprintf(stderr,
+                   "hullmesh: note: %s: the merge left %zu edges with more than two faces at %zu "
+                   "fine triangles; trying again at %zu\n",
+                   args.file.c_str(), out.adjacency.nonmanifold_edges.size(), triangles,
+                   triangles * 2);
+    }
+    out.retried_triangles = triangles * 2;
+    triangles = triangles * 2;
   }
   const long long t1 = now_ns();
   const SurfaceMesh& fine = out.fine();
-  out.adjacency = build_edge_adjacency(fine.faces, fine.vertex_count());
   check_merged_manifold(args.file, fine, out.adjacency,
                         "`hullmesh merge` writes the surface for inspection");
   out.features = find_features(fine, out.adjacency, patches, features);

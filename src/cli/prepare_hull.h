@@ -28,6 +28,9 @@ struct PrepareArgs {
   MergeOptions merge;
   FeatureOptions features;
   bool quiet = false;
+  // Times the fine mesh may be made twice as dense when the merge leaves non-manifold edges (only
+  // when fine_triangles sizes it).
+  int finer_retries = 0;
 };
 
 // Not movable: it is filled in place and read through its accessors.
@@ -43,6 +46,7 @@ struct PreparedHull {
   EdgeAdjacency adjacency;  // of fine()
   FeatureSet features;      // of fine()
   double seconds_import = 0, seconds_features = 0;
+  std::size_t retried_triangles = 0;  // the fine triangle count of the last retry, 0 when none
 
   PreparedHull() = default;
   PreparedHull(const PreparedHull&) = delete;

@@ -10,6 +10,7 @@
 #include "query/surface_refine.h"
 #include "structured/cap_ends.h"
 #include "structured/close_border_gaps.h"
+#include "structured/join_rows.h"
 #include "structured/structured_steps.h"
 
 namespace hm {
@@ -264,13 +265,20 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   rep.cap_triangles = caps.triangles;
   rep.transoms = caps.transoms;
   rep.rows_unmatched += caps.unmatched;
+  std::vector<std::size_t> unpaired;
+  for (std::size_t j = 0; j < strips.size(); ++j)
+    if (strips[j].unmatched) unpaired.push_back(j);
+  const std::vector<std::size_t> joined =
+      join_rows(surface, rows, nodes, first_vertex, unpaired, metric, zo, mesh, slots);
+  rep.rows_unmatched -= joined.size();
+  rep.rows_joined = joined.size();
   const GapCounts gaps = close_border_gaps(surface, row_end, metric, mesh, slots);
   rep.border_gaps = gaps.gaps;
   rep.cap_triangles += gaps.triangles;
   if (mesh.faces.size() > before_caps) {
     BlockReport br;
     br.id = static_cast<Index>(rep.blocks.size());
-    br.lower = "hull ends";
+    br.lower = "hull ends and joined rows";
     br.upper = "stations " + std::to_string(0) + " and " + std::to_string(rows.size() - 1);
     br.x0 = query.bbox().lo.x;
     br.x1 = query.bbox().hi.x;
