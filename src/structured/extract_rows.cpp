@@ -78,14 +78,30 @@ double grade_stretch(RowCurve& c, std::size_t first, std::size_t last, double ba
       turn[k] = std::acos(std::clamp(dot(a, b) / (na * nb), -1.0, 1.0));
     }
   }
-  std::vector<double> measure(kc + 1, base);
+  // Panels per chord: one chord's worth of length, or its turning if that asks for more (never
+  // closer than kMinTurnSpacing panels: a skeg's edge turns half a circle in millimetres).
+  std::vector<double> per_chord(kc);
   for (std::size_t k = 0; k < kc; ++k) {
-    // Never closer than kMinTurnSpacing panels: a skeg's edge turns half a circle in
-    // millimetres, and panels that narrow beside full-length ones break the side-ratio rule.
     const double by_turn =
         std::min(0.5 * (turn[k] + turn[k + 1]) / kMaxTurnPerPanel, step / kMinTurnSpacing);
-    measure[k + 1] = measure[k] + std::max(step, by_turn);
+    per_chord[k] = std::max(step, by_turn);
   }
+  // Spread over a panel either way (two moving averages): panel widths then change gradually
+  // along the row instead of halving where the curvature starts, which broke the area-ratio rule
+  // between neighbours in a row.
+  const std::size_t half = static_cast<std::size_t>(std::lround(1.0 / kTurnChord));
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<double> smooth(kc);
+    for (std::size_t k = 0; k < kc; ++k) {
+      const std::size_t a = k >= half ? k - half : 0, b = std::min(kc - 1, k + half);
+      double sum = 0;
+      for (std::size_t i = a; i <= b; ++i) sum += per_chord[i];
+      smooth[k] = std::max(step, sum / static_cast<double>(b - a + 1));
+    }
+    per_chord = std::move(smooth);
+  }
+  std::vector<double> measure(kc + 1, base);
+  for (std::size_t k = 0; k < kc; ++k) measure[k + 1] = measure[k] + per_chord[k];
   std::vector<double> out(last - first + 1);
   for (std::size_t i = first; i <= last; ++i) {
     const double kf = (c.s[i] - g0) / step;

@@ -22,6 +22,8 @@ constexpr std::size_t kWalkPoints = 48;
 constexpr double kMinStepShare = 0.2;
 // Automatic cuts make blocks at least this many panel lengths long.
 constexpr double kMinBlockPanels = 3;
+// How fast the station spacing may grow along x (m per m).
+constexpr double kGrading = 0.3;
 // A cut station taken from a vertex's x sits this far (relative to L) beside it.
 constexpr double kOffVertex = 1e-5;
 
@@ -143,6 +145,13 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
       },
       4, 16);
   step[last - 1] = step[last - 2];
+  // Graded: the spacing grows by at most kGrading per metre of x either way, so neighbouring
+  // strips differ in width by under a third and the area-ratio rule holds across rows.
+  const double dxs_sample = (box.hi.x - box.lo.x) / static_cast<double>(count);
+  for (std::size_t k = first + 1; k < last; ++k)
+    step[k] = std::min(step[k], step[k - 1] + kGrading * dxs_sample);
+  for (std::size_t k = last - 1; k-- > first;)
+    step[k] = std::min(step[k], step[k + 1] + kGrading * dxs_sample);
 
   // The end stations: about one panel in from the ends (the caps take that panel), and never
   // beyond the last sample that cuts the hull.
