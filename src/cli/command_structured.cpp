@@ -112,11 +112,11 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         c.structured.auto_blocks ? (c.blocks.empty() ? "automatic" : "block file and automatic")
                                  : "block file");
     std::printf("  %zu blocks:\n", r.blocks.size());
-    std::printf("    %5s  %9s %9s  %6s %6s %6s  %s\n", "block", "x0 (m)", "x1 (m)", "rows", "quads",
-                "tris", "between");
+    std::printf("    %5s  %9s %9s  %6s %6s %6s %9s  %s\n", "block", "x0 (m)", "x1 (m)", "rows",
+                "quads", "tris", "time (ms)", "between");
     for (const BlockReport& b : r.blocks) {
-      std::printf("    %5u  %9.4g %9.4g  %6zu %6zu %6zu  %s .. %s\n", b.id, b.x0, b.x1, b.rows,
-                  b.quads, b.triangles, b.lower.c_str(), b.upper.c_str());
+      std::printf("    %5u  %9.4g %9.4g  %6zu %6zu %6zu %9.2f  %s .. %s\n", b.id, b.x0, b.x1,
+                  b.rows, b.quads, b.triangles, 1e3 * b.seconds, b.lower.c_str(), b.upper.c_str());
     }
     std::printf(
         "  quads split into triangles (twisted or distorted): %zu; end caps: %zu quads, "

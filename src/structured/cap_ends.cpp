@@ -129,12 +129,13 @@ CapCounts cap_ends(const SurfaceMesh& surface, const FeatureSet& features,
     }
     // New fixed nodes resampled along a polyline of the surface's boundary or knuckles, between
     // two existing nodes; the nearest of `near` lends each its patch and (u, v).
+    // With on_vertices, each node moves onto the nearest of `near` (a knuckle's own vertices,
+    // which lie on the NURBS, where a point between them would lie on a chord).
     auto add_nodes = [&](const std::vector<Vec3d>& pts, Index first, Index last,
-                         const std::vector<Index>& near) {
+                         const std::vector<Index>& near, bool on_vertices = false) {
       std::vector<Index> ids{first};
+      Index previous = kInvalid;
       for (const Vec3d& p : resample(pts, metric)) {
-        ids.push_back(static_cast<Index>(mesh.positions.size()));
-        mesh.positions.push_back(p);
         Index nv = near.front();
         double nd = std::numeric_limits<double>::infinity();
         for (Index v : near) {
@@ -144,6 +145,10 @@ CapCounts cap_ends(const SurfaceMesh& surface, const FeatureSet& features,
             nv = v;
           }
         }
+        if (on_vertices && (nv == previous || nv == near.front() || nv == near.back())) continue;
+        previous = nv;
+        ids.push_back(static_cast<Index>(mesh.positions.size()));
+        mesh.positions.push_back(on_vertices ? surface.positions[nv] : p);
         mesh.vertex_patch.push_back(surface.vertex_patch.empty() ? 0 : surface.vertex_patch[nv]);
         mesh.vertex_uv.push_back(surface.vertex_uv.empty() ? Vec2d{} : surface.vertex_uv[nv]);
         slots.push_back(NodeSlot{});
@@ -196,7 +201,9 @@ CapCounts cap_ends(const SurfaceMesh& surface, const FeatureSet& features,
       std::vector<Vec3d> pts{c.points.front()};
       for (std::size_t i = 0; i <= p0; ++i) pts.push_back(surface.positions[best[i]]);
       std::vector<Index> a = add_nodes(pts, row_first, k0, best);
-      std::vector<Index> k = add_nodes(points_of(knuckle), k0, k1, knuckle);
+      std::vector<Index> k = add_nodes(points_of(knuckle), k0, k1, knuckle, true);
+      for (std::size_t i = 0; i + 1 < k.size(); ++i)
+        counts.knuckle_edges.push_back({k[i], k[i + 1]});
       pts.assign(1, surface.positions[best[p1]]);
       for (std::size_t i = p1 + 1; i < best.size(); ++i) pts.push_back(surface.positions[best[i]]);
       pts.push_back(c.points.back());

@@ -2,6 +2,7 @@
 // each is zipped between its end row and the surface's boundary path beyond it.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "structured/structured_steps.h"
@@ -11,6 +12,7 @@ namespace hm::structured {
 struct CapCounts {
   std::size_t quads = 0, triangles = 0, unmatched = 0;
   std::size_t transoms = 0;  // ends closed through a transverse knuckle (a transom's edge)
+  std::vector<std::array<Index, 2>> knuckle_edges;  // panel edges along those knuckles
 };
 
 // Appends the cap faces (and the new boundary nodes, fixed) to mesh and slots. Where a knuckle

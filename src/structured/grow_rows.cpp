@@ -4,6 +4,7 @@
 // through the node whose normal is the row's tangent there) and walking along that section to
 // the next station: where it meets row r + 1.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -160,24 +161,32 @@ RowNodes grow_one(const Row& prev, const RowNodes& prev_nodes, const Row& next) 
 
 }  // namespace
 
-std::vector<RowNodes> grow_rows(std::span<const Row> rows) {
+std::vector<RowNodes> grow_rows(std::span<const Row> rows, std::vector<double>* row_seconds) {
   std::vector<RowNodes> nodes(rows.size());
   std::vector<std::size_t> borders;
   for (std::size_t j = 0; j < rows.size(); ++j) {
     if (rows[j].border) borders.push_back(j);
   }
+  std::vector<double> seconds(rows.size(), 0);
+  auto timed = [&](std::size_t j, auto&& place) {
+    const auto t0 = std::chrono::steady_clock::now();
+    place();
+    seconds[j] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   // Border rows first: they are shared by the columns on both sides.
   parallel_for_each_item(borders.size(), [&](std::size_t b) {
-    const Row& row = rows[borders[b]];
-    RowNodes& n = nodes[borders[b]];
-    for (const RowCurve& c : row.curves) n.s.push_back(even_nodes(c));
+    timed(borders[b], [&] {
+      for (const RowCurve& c : rows[borders[b]].curves)
+        nodes[borders[b]].s.push_back(even_nodes(c));
+    });
   });
   // Then each column, from its aft border row.
   parallel_for_each_item(borders.empty() ? 0 : borders.size() - 1, [&](std::size_t b) {
     for (std::size_t j = borders[b] + 1; j < borders[b + 1]; ++j) {
-      nodes[j] = grow_one(rows[j - 1], nodes[j - 1], rows[j]);
+      timed(j, [&] { nodes[j] = grow_one(rows[j - 1], nodes[j - 1], rows[j]); });
     }
   });
+  if (row_seconds) *row_seconds = std::move(seconds);
   return nodes;
 }
 

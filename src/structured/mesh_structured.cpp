@@ -112,7 +112,8 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   rep.seconds_rows = seconds_since(t);
 
   t = clock::now();
-  const std::vector<RowNodes> nodes = grow_rows(rows);
+  std::vector<double> row_seconds;
+  const std::vector<RowNodes> nodes = grow_rows(rows, &row_seconds);
 
   // Vertices, row by row, curve by curve, node by node.
   SurfaceMesh& mesh = out.mesh;
@@ -155,11 +156,22 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
     std::map<std::uint32_t, std::array<std::string, 2>> block_names;
     ZipCounts counts;
     bool unmatched = false;
+    double seconds = 0;  // growing its forward row and zipping it
   };
   std::vector<StripFaces> strips(rows.size() > 0 ? rows.size() - 1 : 0);
   const ZipOptions zo{options.min_opposite_ratio, options.max_warp};
   parallel_for_each_item(strips.size(), [&](std::size_t j) {
+    const auto t0 = std::chrono::steady_clock::now();
     StripFaces& sf = strips[j];
+    struct Stamp {
+      StripFaces& sf;
+      double grown;
+      std::chrono::steady_clock::time_point t0;
+      ~Stamp() {
+        sf.seconds =
+            grown + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      }
+    } stamp{sf, row_seconds[j + 1], t0};
     const Row& a = rows[j];
     const Row& b = rows[j + 1];
     if (a.curves.size() != b.curves.size() || a.curves.empty()) {
@@ -238,6 +250,7 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
       br.x0 = std::min(br.x0, rows[j].x);
       br.x1 = std::max(br.x1, rows[j + 1].x);
       ++(is_triangle(sf.faces[f]) ? br.triangles : br.quads);
+      br.seconds += sf.seconds / static_cast<double>(sf.faces.size());
       mesh.faces.push_back(sf.faces[f]);
       mesh.face_block.push_back(id);
     }
@@ -264,6 +277,8 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   rep.cap_quads = caps.quads;
   rep.cap_triangles = caps.triangles;
   rep.transoms = caps.transoms;
+  out.knuckle_edges.insert(out.knuckle_edges.end(), caps.knuckle_edges.begin(),
+                           caps.knuckle_edges.end());
   rep.rows_unmatched += caps.unmatched;
   std::vector<std::size_t> unpaired;
   for (std::size_t j = 0; j < strips.size(); ++j)

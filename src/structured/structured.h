@@ -68,6 +68,7 @@ struct BlockReport {
   double x0 = 0, x1 = 0;     // station range, m
   std::string lower, upper;  // what bounds it across the rows (keel, knuckle 2, plane "WL1", ...)
   std::size_t rows = 0, quads = 0, triangles = 0;
+  double seconds = 0;  // growing its rows and zipping its strips (a strip's time shared by face)
 };
 
 struct StructuredReport {

@@ -96,7 +96,9 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
 // the plane normal to their row until they meet the next station, then nodes are merged or
 // added where the row is shorter or longer than the count it needs, and blended towards even
 // spacing. Columns (runs between border rows) grow in parallel.
-std::vector<RowNodes> grow_rows(std::span<const Row> rows);
+// row_seconds, when given, gets the time each row took to place (for the per-block times).
+std::vector<RowNodes> grow_rows(std::span<const Row> rows,
+                                std::vector<double>* row_seconds = nullptr);
 
 // --- zip ----------------------------------------------------------------------------------
 // One strip of panels between two node chains a and b (global vertex ids, with arc-length

@@ -199,6 +199,20 @@ TEST(Structured, ChineNodesLieOnTheKnuckle) {
   // The transom's edge is a knuckle too: the aft cap follows it, so no panel cuts across the
   // corner between transom and hull (one would stand 0.3 m off the NURBS).
   EXPECT_EQ(m.report.transoms, 1u);
+  // Its nodes on the transom's knuckle are the knuckle's own vertices, on the NURBS: exact.
+  std::size_t on_transom = 0;
+  for (const auto& e : m.knuckle_edges) {
+    for (Index v : e) {
+      const Vec3d& p = m.mesh.positions[v];
+      if (p.x > 1e-6) continue;
+      ++on_transom;
+      double nearest = 1e300;
+      for (const FeatureLine& k : w->features.knuckles)
+        for (Index u : k.vertices) nearest = std::min(nearest, norm(w->cut.mesh.positions[u] - p));
+      EXPECT_LT(nearest, 1e-9 * 100) << p.x << ", " << p.y << ", " << p.z;
+    }
+  }
+  EXPECT_GT(on_transom, 4u);
   const DeviationMeasure dev = measure_deviation(*w->query, m.mesh);
   EXPECT_LT(dev.max, 1e-3 * 100);
 }
