@@ -80,4 +80,37 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
   return out;
 }
 
+std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                                        const Vec3d& a, const Vec3d& b, const Metric& metric,
+                                        double tol) {
+  const LoopSpot sa = nearest_boundary_edge(surface, adj, a);
+  const LoopSpot sb = nearest_boundary_edge(surface, adj, b);
+  if (sa.loop != sb.loop || sa.distance > tol || sb.distance > tol) return {};
+  const std::vector<Index>& loop = adj.boundary_loops[sa.loop].vertices;
+  std::vector<Vec3d> best;
+  double best_len = std::numeric_limits<double>::infinity();
+  for (const bool forward : {true, false}) {
+    std::vector<Vec3d> pts{a};
+    for (Index v : loop_path(loop, sa.edge, sb.edge, forward)) pts.push_back(surface.positions[v]);
+    pts.push_back(b);
+    double len = 0;
+    for (std::size_t i = 1; i < pts.size(); ++i) len += metric.length(pts[i - 1], pts[i]);
+    if (len < best_len) {
+      best_len = len;
+      best = std::move(pts);
+    }
+  }
+  return best;
+}
+
+std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMesh& mesh,
+                                    const Metric& metric) {
+  std::vector<double> f{0};
+  for (std::size_t i = 1; i < ids.size(); ++i)
+    f.push_back(f.back() + metric.length(mesh.positions[ids[i - 1]], mesh.positions[ids[i]]));
+  const double total = std::max(f.back(), 1e-300);
+  for (double& x : f) x /= total;
+  return f;
+}
+
 }  // namespace hm::structured

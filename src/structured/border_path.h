@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "mesh/adjacency.h"
@@ -23,6 +24,17 @@ LoopSpot nearest_boundary_edge(const SurfaceMesh& s, const EdgeAdjacency& adj, c
 // backwards; empty when both lie on one edge.
 std::vector<Index> loop_path(const std::vector<Index>& v, std::size_t ea, std::size_t eb,
                              bool forward);
+
+// The surface's boundary from a to b (points on it, within tol of a boundary edge of one loop),
+// the shorter way round in the metric, as a polyline from a to b; empty when a and b do not lie
+// on one loop within tol.
+std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                                        const Vec3d& a, const Vec3d& b, const Metric& metric,
+                                        double tol);
+
+// Metric arc-length fractions (0 to 1) of a chain of mesh nodes.
+std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMesh& mesh,
+                                    const Metric& metric);
 
 // Resamples the polyline pts at about one panel per metric unit, keeping its corners (turns over
 // 40 degrees); returns the interior points (the two ends excluded).

@@ -13,19 +13,7 @@
 #include "structured/border_path.h"
 
 namespace hm::structured {
-namespace {
-
-std::vector<double> fractions(std::span<const Index> ids, const SurfaceMesh& mesh,
-                              const Metric& metric) {
-  std::vector<double> f{0};
-  for (std::size_t i = 1; i < ids.size(); ++i)
-    f.push_back(f.back() + metric.length(mesh.positions[ids[i - 1]], mesh.positions[ids[i]]));
-  const double total = std::max(f.back(), 1e-300);
-  for (double& x : f) x /= total;
-  return f;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 // The transverse knuckle beyond an end station (a transom's edge): a path of knuckle edges, every
 // vertex beyond the station, from one vertex of the boundary path to another. Returns its
@@ -170,8 +158,8 @@ CapCounts cap_ends(const SurfaceMesh& surface, const FeatureSet& features,
     };
     auto zip = [&](const std::vector<Index>& inner, const std::vector<Index>& outer) {
       // inner runs along the station side, outer beyond it; both from the lower end.
-      const std::vector<double> fi = fractions(inner, mesh, metric);
-      const std::vector<double> fo = fractions(outer, mesh, metric);
+      const std::vector<double> fi = chain_fractions(inner, mesh, metric);
+      const std::vector<double> fo = chain_fractions(outer, mesh, metric);
       const ZipCounts n =
           aft ? zip_chains(outer, fo, inner, fi, mesh.positions, zip_options, mesh.faces)
               : zip_chains(inner, fi, outer, fo, mesh.positions, zip_options, mesh.faces);

@@ -43,25 +43,8 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, std::span<const std::uin
     if (u >= row_end.size() || w >= row_end.size() || !row_end[u] || !row_end[w]) continue;
     if (slots[u].row == slots[w].row) continue;
     const Vec3d pu = mesh.positions[u], pw = mesh.positions[w];
-    const LoopSpot su = nearest_boundary_edge(surface, adj, pu);
-    const LoopSpot sw = nearest_boundary_edge(surface, adj, pw);
-    if (su.loop != sw.loop || su.distance > tol || sw.distance > tol) continue;
-    // The shorter way round the loop between the two ends.
-    const std::vector<Index>& loop = adj.boundary_loops[su.loop].vertices;
-    std::vector<Vec3d> best;
-    double best_len = std::numeric_limits<double>::infinity();
-    for (const bool forward : {true, false}) {
-      std::vector<Vec3d> pts{pu};
-      for (Index v : loop_path(loop, su.edge, sw.edge, forward))
-        pts.push_back(surface.positions[v]);
-      pts.push_back(pw);
-      double len = 0;
-      for (std::size_t i = 1; i < pts.size(); ++i) len += metric.length(pts[i - 1], pts[i]);
-      if (len < best_len) {
-        best_len = len;
-        best = std::move(pts);
-      }
-    }
+    const std::vector<Vec3d> best = shortest_border_path(surface, adj, pu, pw, metric, tol);
+    if (best.empty()) continue;
     // One end on the centre plane and the other off it, on another plane (the waterline): the
     // boundary turns a corner between them, however little the path strays.
     const bool turns = pu.z != pw.z && (pu.y == 0) != (pw.y == 0);

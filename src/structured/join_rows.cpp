@@ -37,27 +37,10 @@ std::vector<std::size_t> join_rows(const SurfaceMesh& surface, std::span<const R
       // The boundary from this curve's upper end to the next one's lower end, the shorter way.
       const Vec3d from = mesh.positions[chain->back()];
       const Vec3d to = mesh.positions[first_vertex[j][c + 1]];
-      const LoopSpot sa = nearest_boundary_edge(surface, adj, from);
-      const LoopSpot sb = nearest_boundary_edge(surface, adj, to);
-      if (sa.loop != sb.loop || sa.distance > tol || sb.distance > tol) {
+      const std::vector<Vec3d> best = shortest_border_path(surface, adj, from, to, metric, tol);
+      if (best.empty()) {
         chain.reset();
         break;
-      }
-      const std::vector<Index>& loop = adj.boundary_loops[sa.loop].vertices;
-      std::vector<Vec3d> best;
-      double best_len = std::numeric_limits<double>::infinity();
-      for (const bool forward : {true, false}) {
-        std::vector<Vec3d> pts{from};
-        for (Index v : loop_path(loop, sa.edge, sb.edge, forward)) {
-          pts.push_back(surface.positions[v]);
-        }
-        pts.push_back(to);
-        double len = 0;
-        for (std::size_t k = 1; k < pts.size(); ++k) len += metric.length(pts[k - 1], pts[k]);
-        if (len < best_len) {
-          best_len = len;
-          best = std::move(pts);
-        }
       }
       for (const Vec3d& p : resample(best, metric)) {
         chain->push_back(static_cast<Index>(mesh.positions.size()));
@@ -69,20 +52,13 @@ std::vector<std::size_t> join_rows(const SurfaceMesh& surface, std::span<const R
     }
     return chains.emplace(j, std::move(chain)).first->second;
   };
-  auto fractions = [&](const std::vector<Index>& ids) {
-    std::vector<double> f{0};
-    for (std::size_t i = 1; i < ids.size(); ++i)
-      f.push_back(f.back() + metric.length(mesh.positions[ids[i - 1]], mesh.positions[ids[i]]));
-    const double total = std::max(f.back(), 1e-300);
-    for (double& x : f) x /= total;
-    return f;
-  };
   for (std::size_t j : strips) {
     if (rows[j].curves.empty() || rows[j + 1].curves.empty()) continue;
     const std::optional<std::vector<Index>> a = joined(j);
     const std::optional<std::vector<Index>> b = joined(j + 1);
     if (!a || !b) continue;
-    zip_chains(*a, fractions(*a), *b, fractions(*b), mesh.positions, zip, mesh.faces);
+    zip_chains(*a, chain_fractions(*a, mesh, metric), *b, chain_fractions(*b, mesh, metric),
+               mesh.positions, zip, mesh.faces);
     closed.push_back(j);
   }
   return closed;
