@@ -6,8 +6,10 @@
 // crosses it; they and the curve's ends become nodes of every row, so blocks meet node to node.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -115,15 +117,52 @@ ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::
                      std::span<const double> fb, std::span<const Vec3d> positions,
                      const ZipOptions& options, std::vector<Face>& faces);
 
-// --- relax --------------------------------------------------------------------------------
-// Point relocation: every free node (not a breakpoint, not on a border row) moves along its row
-// curve towards the mean of its mesh neighbours. rows/nodes give each vertex's curve.
+// --- nodes -------------------------------------------------------------------------------
+// Where each vertex came from: its row, curve and arc length (row kInvalid for boundary nodes
+// the caps, joins and gap fans add).
 struct NodeSlot {
   Index row = kInvalid, curve = 0;
   double s = 0;
   bool fixed = true;      // relocation leaves it (border rows, breakpoints, cap nodes)
   bool on_break = false;  // a curve end, knuckle or plane crossing: exact as it stands
 };
+struct NodeLayout {
+  std::vector<NodeSlot> slots;                   // one per vertex
+  std::vector<std::vector<Index>> first_vertex;  // [row][curve]: its first node's vertex
+};
+// Appends every row node to mesh (position on its curve, patch and (u, v)), row by row, curve by
+// curve, node by node.
+NodeLayout place_nodes(std::span<const Row> rows, std::span<const RowNodes> nodes,
+                       SurfaceMesh& mesh);
+// Row nodes back onto the exact NURBS, still on their station plane (breakpoints and boundary
+// nodes stay). tol: the Newton residual accepted, m.
+void refine_nodes(std::span<const Patch> patches, std::span<const Row> rows,
+                  std::span<const NodeSlot> slots, double tol, const Metric& metric,
+                  SurfaceMesh& mesh);
+
+// --- strips ------------------------------------------------------------------------------
+struct StripFaces {
+  std::vector<Face> faces;
+  std::vector<std::uint32_t> block_key;  // (column << 16) | (curve << 8) | segment
+  std::vector<std::array<Index, 2>> knuckle_edges;
+  std::map<std::uint32_t, std::array<std::string, 2>> block_names;
+  ZipCounts counts;
+  bool unmatched = false;  // the rows' curve counts differ (left to join_rows)
+  double seconds = 0;      // growing its forward row and zipping it
+};
+// Strip j joins rows j and j + 1, zipped segment by segment between the labels both carry.
+std::vector<StripFaces> zip_strips(std::span<const Row> rows, std::span<const RowNodes> nodes,
+                                   std::span<const std::vector<Index>> first_vertex,
+                                   std::span<const Vec3d> positions, const ZipOptions& zo,
+                                   std::span<const double> row_seconds);
+// Appends the strips' faces in row order, numbers the blocks (a column's share between two labels
+// every row of it carries) and fills their reports.
+void commit_strips(std::span<const Row> rows, std::span<const StripFaces> strips,
+                   StructuredMesh& out);
+
+// --- relax --------------------------------------------------------------------------------
+// Point relocation: every free node (not a breakpoint, not on a border row) moves along its row
+// curve towards the mean of its mesh neighbours. rows/nodes give each vertex's curve.
 void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span<const Face> faces,
                  std::vector<Vec3d>& positions, int passes);
 
