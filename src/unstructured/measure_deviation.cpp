@@ -3,21 +3,19 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "mesh/adjacency.h"
 
 namespace hm {
 
 DeviationMeasure measure_deviation(const HullQuery& hull, const SurfaceMesh& panels) {
-  constexpr int kSamples = 4;  // centroid and three edge midpoints (first three edges of a quad)
+  // Every centroid, then every edge's midpoint once (an edge shared by two panels is one sample).
   const std::size_t nf = panels.face_count();
-  std::vector<Vec3d> sample(nf * kSamples);
-  parallel_for(0, nf, [&](std::size_t f) {
-    const Face& fc = panels.faces[f];
-    const int n = corner_count(fc);
-    sample[f * kSamples] = face_centroid(panels.positions, fc);
-    for (int c = 0; c < 3; ++c) {
-      sample[f * kSamples + 1 + c] =
-          0.5 * (panels.positions[fc[c]] + panels.positions[fc[(c + 1) % n]]);
-    }
+  const EdgeAdjacency adj = build_edge_adjacency(panels.faces, panels.vertex_count());
+  std::vector<Vec3d> sample(nf + adj.edges.size());
+  parallel_for(
+      0, nf, [&](std::size_t f) { sample[f] = face_centroid(panels.positions, panels.faces[f]); });
+  parallel_for(0, adj.edges.size(), [&](std::size_t e) {
+    sample[nf + e] = 0.5 * (panels.positions[adj.edges[e].v0] + panels.positions[adj.edges[e].v1]);
   });
   std::vector<ClosestPoint> cp(sample.size());
   hull.closest_points(sample, cp);

@@ -1,6 +1,7 @@
-// How far a panel mesh strays from the NURBS: every panel is sampled at its centroid and its edge
-// midpoints, and each sample's distance to the hull comes from the closest-point query (Embree on
-// the fine triangulation, refined on the NURBS). Metres, model frame.
+// How far a panel mesh strays from the NURBS: every panel is sampled at its centroid and every
+// edge at its midpoint (once, however many panels share it), and each sample's distance to the hull
+// comes from the closest-point query (Embree on the fine triangulation, refined on the NURBS).
+// Metres, model frame.
 #pragma once
 
 #include "mesh/surface_mesh.h"
