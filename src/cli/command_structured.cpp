@@ -59,7 +59,14 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   pa.file = c.file;
   pa.units = c.units;
   pa.floating = c.floating;
-  pa.cut_centre_plane = c.symmetry == "half";
+  // A full hull upright is meshed as its port half and mirrored (unless --symmetry half keeps
+  // the half): the panels are then symmetric, and each station is one curve from keel to
+  // waterline. A heeled hull has no symmetry and is meshed whole.
+  const bool heeled = c.floating.heel_deg != 0;
+  if (heeled && c.symmetry == "half") {
+    throw UsageError("--symmetry half with --heel: a heeled hull is not symmetric about y = 0");
+  }
+  pa.cut_centre_plane = !heeled;
   pa.features = c.features;
   pa.quiet = g.quiet;
   // The rows are cut from the NURBS, so a denser fine mesh costs only time: the structured
@@ -82,12 +89,16 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   SurfaceMesh& panels = sm.mesh;
   const std::size_t centre_snapped =
       ph.file_half || ph.centre_cut ? snap_to_centre_plane(panels, ph.centre_tol) : 0;
+  // A cap or fan panel whose corners all ended on the centre plane (a Wigley's forefoot).
+  const std::size_t on_plane_dropped =
+      ph.file_half || ph.centre_cut ? drop_centre_plane_faces(panels) : 0;
   const long long t2 = now_ns();
   const DeviationMeasure dev = measure_deviation(query, panels);
   const SurfaceMesh* output = &panels;
   std::vector<std::array<Index, 2>> knuckle_edges = sm.knuckle_edges;
   std::optional<MirroredMesh> mirrored;
-  if (c.symmetry == "full" && is_half_hull(panels, ph.centre_tol)) {
+  const bool mirror = !heeled && (c.symmetry == "full" || (c.symmetry == "auto" && !ph.file_half));
+  if (mirror && is_half_hull(panels, ph.centre_tol)) {
     mirrored = mirror_half_hull(panels, ph.centre_tol);
     output = &mirrored->mesh;
     const auto images = mirrored_edges(*mirrored, panels.vertex_count(), sm.knuckle_edges);
@@ -142,6 +153,9 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
     }
     if (mirrored) {
       std::printf("  mirrored about y = 0: %zu panels in the full hull\n", output->face_count());
+    }
+    if (on_plane_dropped > 0) {
+      std::printf("  %zu panels lying in the centre plane dropped\n", on_plane_dropped);
     }
     if (centre_snapped > 0) {
       std::printf("  %zu vertices of the open side moved onto y = 0 (at most %.3g m)\n",
@@ -215,8 +229,9 @@ void register_structured(CLI::App& app, const GlobalOptions& global, Action& act
       ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
   add_floating_options(cmd, c->floating);
   cmd->add_option("--symmetry", c->symmetry,
-                  "auto: as the file is (a half hull gets its y = 0 flag); half: keep the port "
-                  "half of a full hull; full: mirror a half hull")
+                  "auto: as the file is (a full hull is meshed as its port half and mirrored; a "
+                  "half hull gets its y = 0 flag); half: the port half only; full: mirror a half "
+                  "hull")
       ->check(CLI::IsMember({"auto", "half", "full"}));
   cmd->callback(
       [c, &global, &action] { action = [c, &global] { return run_structured(*c, global); }; });

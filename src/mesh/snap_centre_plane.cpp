@@ -21,4 +21,24 @@ std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol) {
   return moved;
 }
 
+std::size_t drop_centre_plane_faces(SurfaceMesh& mesh) {
+  std::size_t kept = 0;
+  const std::size_t n = mesh.faces.size();
+  for (std::size_t f = 0; f < n; ++f) {
+    const Face& face = mesh.faces[f];
+    bool on_plane = true;
+    for (int c = 0; c < corner_count(face); ++c)
+      on_plane = on_plane && mesh.positions[face[c]].y == 0;
+    if (on_plane) continue;
+    mesh.faces[kept] = face;
+    if (!mesh.face_patch.empty()) mesh.face_patch[kept] = mesh.face_patch[f];
+    if (!mesh.face_block.empty()) mesh.face_block[kept] = mesh.face_block[f];
+    ++kept;
+  }
+  mesh.faces.resize(kept);
+  if (!mesh.face_patch.empty()) mesh.face_patch.resize(kept);
+  if (!mesh.face_block.empty()) mesh.face_block.resize(kept);
+  return n - kept;
+}
+
 }  // namespace hm

@@ -14,4 +14,9 @@ namespace hm {
 // of its surface stays within that bound plus tol.
 std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol);
 
+// Removes the faces whose corners all lie on y = 0 exactly (after snapping): a panel in the
+// symmetry plane is no part of a half hull's surface, and its mirror image would lie on it.
+// Keeps every per-face array in step; vertices stay. Returns how many went.
+std::size_t drop_centre_plane_faces(SurfaceMesh& mesh);
+
 }  // namespace hm

@@ -606,6 +606,32 @@ TEST(CliStructured, SharedHullsAtTheirWaterline) {
   }
 }
 
+// A full hull upright is meshed as its port half and mirrored: twice the half's panels, every
+// vertex with its mirror image, closed along the keel.
+TEST(CliStructured, FullHullIsMeshedAsAHalfAndMirrored) {
+  const fs::path dir = test::scratch_dir("cli_structured_full");
+  const fs::path igs = dir / "w.igs", half = dir / "half.obj", full = dir / "full.obj";
+  ASSERT_EQ(test::run_hullmesh("-q generate wigley --patches 8 --full -o '" + igs.string() + "'")
+                .exit_code,
+            0);
+  const std::string base = "structured '" + igs.string() + "' --panels 800 --draft 5 -o '";
+  const auto h = test::run_hullmesh(base + half.string() + "' --symmetry half");
+  ASSERT_EQ(h.exit_code, 0) << h.out;
+  const auto r = test::run_hullmesh(base + full.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("mirrored about y = 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 non-manifold edges"), std::string::npos) << r.out;
+  const nlohmann::json qh = quality_json(half), qf = quality_json(full);
+  EXPECT_EQ(qf["faces"].get<std::size_t>(), 2 * qh["faces"].get<std::size_t>());
+  EXPECT_FALSE(qf["half_hull"].get<bool>());
+  EXPECT_TRUE(qh["half_hull"].get<bool>());
+  EXPECT_EQ(qf["topology"]["free_edges_below_waterline"].get<std::size_t>(), 0u);
+  // Heeled, there is no symmetry to keep a half by.
+  const auto bad =
+      test::run_hullmesh(base + (dir / "x.obj").string() + "' --heel 5 --symmetry half");
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+}
+
 TEST(CliStructured, BadBlockFileAndSizeAreRefusedBeforeMeshing) {
   const fs::path dir = test::scratch_dir("cli_structured_bad");
   const fs::path igs = dir / "w.igs", out = dir / "p.gdf", blocks = dir / "b.json";

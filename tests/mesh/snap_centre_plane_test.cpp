@@ -27,3 +27,29 @@ TEST(SnapToCentrePlane, MovesOnlyOpenBoundaryVerticesWithinTheTolerance) {
 
 }  // namespace
 }  // namespace hm
+
+namespace hm {
+namespace {
+
+TEST(DropCentrePlaneFaces, RemovesOnlyFacesWhollyOnThePlaneAndKeepsProvenanceInStep) {
+  SurfaceMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0.5, 1}, {2, 0, 0}};
+  m.faces = {{0, 1, 2, kInvalid}, {1, 3, 2, kInvalid}, {1, 4, 3, kInvalid}};
+  m.face_patch = {7, 8, 9};
+  m.face_block = {0, 1, 2};
+  EXPECT_EQ(drop_centre_plane_faces(m), 1u);
+  ASSERT_EQ(m.face_count(), 2u);
+  EXPECT_EQ(m.faces[0], (Face{1, 3, 2, kInvalid}));
+  EXPECT_EQ(m.face_patch, (std::vector<PatchId>{8, 9}));
+  EXPECT_EQ(m.face_block, (std::vector<Index>{1, 2}));
+  // A face a little off the plane stays.
+  m.positions[3].y = 1e-12;
+  m.positions.push_back({0, 0, 2});
+  m.faces.push_back({2, 3, 5, kInvalid});
+  m.face_patch.push_back(1);
+  m.face_block.push_back(3);
+  EXPECT_EQ(drop_centre_plane_faces(m), 0u);
+}
+
+}  // namespace
+}  // namespace hm
