@@ -135,6 +135,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         "  quads split into triangles (twisted or distorted): %zu; end caps: %zu quads, "
         "%zu triangles\n",
         r.split_twisted, r.cap_quads, r.cap_triangles);
+    std::printf("  relocation: %zu moves kept by the quality objective\n", r.quality_moves);
     if (r.rows_joined > 0) {
       std::printf("  %zu strips between rows of different curve counts joined through the border\n",
                   r.rows_joined);

@@ -126,6 +126,7 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
   const std::size_t count =
       std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(4 * length / hx)), 64, 4000);
   const std::vector<Sample> samples = sample_sections(query, box.lo.x, box.hi.x, count);
+  const double dxs = (box.hi.x - box.lo.x) / static_cast<double>(count);  // sample spacing
 
   // The ends: the first and last samples that cut the hull.
   std::size_t first = 0, last = count;
@@ -147,11 +148,10 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
   step[last - 1] = step[last - 2];
   // Graded: the spacing grows by at most kGrading per metre of x either way, so neighbouring
   // strips differ in width by under a third and the area-ratio rule holds across rows.
-  const double dxs_sample = (box.hi.x - box.lo.x) / static_cast<double>(count);
   for (std::size_t k = first + 1; k < last; ++k)
-    step[k] = std::min(step[k], step[k - 1] + kGrading * dxs_sample);
+    step[k] = std::min(step[k], step[k - 1] + kGrading * dxs);
   for (std::size_t k = last - 1; k-- > first;)
-    step[k] = std::min(step[k], step[k + 1] + kGrading * dxs_sample);
+    step[k] = std::min(step[k], step[k + 1] + kGrading * dxs);
 
   // The end stations: about one panel in from the ends (the caps take that panel), and never
   // beyond the last sample that cuts the hull.
@@ -216,7 +216,6 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
   std::vector<double> borders{x_first};
   borders.insert(borders.end(), cuts.begin(), cuts.end());
   borders.push_back(x_last);
-  const double dxs = (box.hi.x - box.lo.x) / static_cast<double>(count);
   auto density = [&](double x) {
     const double f = (x - box.lo.x) / dxs - 0.5;
     const std::size_t k = std::clamp<std::size_t>(
