@@ -38,6 +38,7 @@ constexpr std::size_t kFinePerPanel = 20, kFineMin = 40'000, kFineMax = 1'000'00
 struct Wetted {
   GeneratedHull hull;
   PlaneCut cut;
+  EdgeAdjacency adj;  // of cut.mesh
   FeatureSet features;
   std::unique_ptr<HullQuery> query;
 };
@@ -68,10 +69,10 @@ const Wetted& wetted(std::size_t panels) {
   PlaneCutOptions co;
   co.value = draft;
   w->cut = cut_at_plane(w->hull.patches, merged.mesh, co);
-  const EdgeAdjacency adj = build_edge_adjacency(w->cut.mesh.faces, w->cut.mesh.vertex_count());
+  w->adj = build_edge_adjacency(w->cut.mesh.faces, w->cut.mesh.vertex_count());
   FeatureOptions fo;
   fo.waterline_z = draft;
-  w->features = find_features(w->cut.mesh, adj, w->hull.patches, fo);
+  w->features = find_features(w->cut.mesh, w->adj, w->hull.patches, fo);
   w->query = std::make_unique<HullQuery>(w->hull.patches, w->cut.mesh);
   return *cache.emplace(panels, std::move(w)).first->second;
 }
@@ -79,7 +80,7 @@ const Wetted& wetted(std::size_t panels) {
 StructuredMesh run(const Wetted& w, std::size_t panels) {
   StructuredOptions o;
   o.target_panels = panels;
-  return mesh_structured(w.hull.patches, w.cut.mesh, *w.query, w.features, o);
+  return mesh_structured(w.hull.patches, w.cut.mesh, w.adj, *w.query, w.features, o);
 }
 
 // What each (panels, threads) run gave, for the summary: best wall time and the last mesh.

@@ -82,7 +82,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   const HullQuery query(ph.patches(), fine);
   const double t_query = seconds_since(t0);
   const long long t1 = now_ns();
-  StructuredMesh sm = mesh_structured(ph.patches(), fine, query, ph.features, c.structured);
+  StructuredMesh sm =
+      mesh_structured(ph.patches(), fine, ph.adjacency, query, ph.features, c.structured);
   const double t_mesh = seconds_since(t1);
   const StructuredReport& r = sm.report;
 

@@ -71,13 +71,12 @@ std::vector<Index> end_knuckle(const SurfaceMesh& surface, const FeatureSet& fea
   return best;
 }
 
-CapCounts cap_ends(const SurfaceMesh& surface, const FeatureSet& features,
+CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const FeatureSet& features,
                    std::span<const Row> rows, std::span<const RowNodes> nodes,
                    std::span<const std::vector<Index>> first_vertex, const Metric& metric,
                    const ZipOptions& zip_options, SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
   CapCounts counts;
   if (rows.empty()) return counts;
-  const EdgeAdjacency adj = build_edge_adjacency(surface.faces, surface.vertex_count());
   const double tol = 0.25 * std::min({metric.size.x, metric.size.y, metric.size.z});
   for (const bool aft : {true, false}) {
     const std::size_t j = aft ? 0 : rows.size() - 1;

@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "mesh/adjacency.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -20,7 +21,7 @@ struct CapCounts {
 // is two strips: row to knuckle, and knuckle to the boundary beyond, so no panel straddles it.
 // An end whose row has more than one curve, or whose ends do not lie on one boundary loop of the
 // surface, is left open and counted in unmatched.
-CapCounts cap_ends(const SurfaceMesh& surface, const FeatureSet& features,
+CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const FeatureSet& features,
                    std::span<const Row> rows, std::span<const RowNodes> nodes,
                    std::span<const std::vector<Index>> first_vertex, const Metric& metric,
                    const ZipOptions& zip_options, SurfaceMesh& mesh, std::vector<NodeSlot>& slots);

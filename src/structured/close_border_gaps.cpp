@@ -29,11 +29,11 @@ double stray(const std::vector<Vec3d>& pts, const Vec3d& a, const Vec3d& b, cons
 
 }  // namespace
 
-GapCounts close_border_gaps(const SurfaceMesh& surface, std::span<const std::uint8_t> row_end,
-                            const Metric& metric, SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
+GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                            std::span<const std::uint8_t> row_end, const Metric& metric,
+                            SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
   GapCounts counts;
   const EdgeAdjacency panels = build_edge_adjacency(mesh.faces, mesh.vertex_count());
-  const EdgeAdjacency adj = build_edge_adjacency(surface.faces, surface.vertex_count());
   const double tol = 0.25 * std::min({metric.size.x, metric.size.y, metric.size.z});
   const std::size_t face_count = mesh.faces.size();
   for (Index e : panels.boundary_edges) {

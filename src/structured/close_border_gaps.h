@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "mesh/adjacency.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -18,7 +19,8 @@ struct GapCounts {
 
 // row_end: per vertex of mesh, 1 for a row curve's end node. Appends triangles (and fixed boundary
 // nodes) to mesh and slots.
-GapCounts close_border_gaps(const SurfaceMesh& surface, std::span<const std::uint8_t> row_end,
-                            const Metric& metric, SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
+GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                            std::span<const std::uint8_t> row_end, const Metric& metric,
+                            SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
 
 }  // namespace hm::structured

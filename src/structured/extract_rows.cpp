@@ -279,18 +279,16 @@ void snap_end(Vec3d& end, double x, const SurfaceMesh& surface,
 }  // namespace
 
 std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface,
-                              const FeatureSet& features, std::span<const BlockPlane> planes,
-                              const StationPlan& plan, const Metric& metric) {
+                              const EdgeAdjacency& adj, const FeatureSet& features,
+                              std::span<const BlockPlane> planes, const StationPlan& plan,
+                              const Metric& metric) {
   std::vector<Plane> cut(plan.x.size());
   for (std::size_t j = 0; j < cut.size(); ++j) cut[j] = Plane{{plan.x[j], 0, 0}, {1, 0, 0}};
   const std::vector<Section> secs = query.sections(cut);
   const double tol = 1e-3 * query.length_scale();
   const std::vector<Index> group = knuckle_groups(surface, features);
   std::vector<std::array<Index, 2>> boundary;
-  {
-    const EdgeAdjacency adj = build_edge_adjacency(surface.faces, surface.vertex_count());
-    for (Index e : adj.boundary_edges) boundary.push_back({adj.edges[e].v0, adj.edges[e].v1});
-  }
+  for (Index e : adj.boundary_edges) boundary.push_back({adj.edges[e].v0, adj.edges[e].v1});
   std::vector<Row> rows(plan.x.size());
   parallel_for_each_item(rows.size(), [&](std::size_t j) {
     Row& row = rows[j];

@@ -13,15 +13,14 @@
 
 namespace hm::structured {
 
-std::vector<std::size_t> join_rows(const SurfaceMesh& surface, std::span<const Row> rows,
-                                   std::span<const RowNodes> nodes,
+std::vector<std::size_t> join_rows(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                                   std::span<const Row> rows, std::span<const RowNodes> nodes,
                                    std::span<const std::vector<Index>> first_vertex,
                                    std::span<const std::size_t> strips, const Metric& metric,
                                    const ZipOptions& zip, SurfaceMesh& mesh,
                                    std::vector<NodeSlot>& slots) {
   std::vector<std::size_t> closed;
   if (strips.empty()) return closed;
-  const EdgeAdjacency adj = build_edge_adjacency(surface.faces, surface.vertex_count());
   const double tol = 0.25 * std::min({metric.size.x, metric.size.y, metric.size.z});
   std::map<std::size_t, std::optional<std::vector<Index>>> chains;
   auto joined = [&](std::size_t j) -> const std::optional<std::vector<Index>>& {

@@ -55,10 +55,11 @@ double orientation_measure(const SurfaceMesh& m) {
 
 // The hull beyond the end stations (caps), strips between rows of different curve counts
 // (joined rows), and slivers between row ends and the surface's border (fans): one block.
-void close_ends(const SurfaceMesh& surface, const BBox3d& box, const FeatureSet& features,
-                std::span<const Row> rows, std::span<const RowNodes> nodes,
-                std::span<const StripFaces> strips, const Metric& metric, const ZipOptions& zo,
-                NodeLayout& layout, StructuredMesh& out) {
+void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, const BBox3d& box,
+                const FeatureSet& features, std::span<const Row> rows,
+                std::span<const RowNodes> nodes, std::span<const StripFaces> strips,
+                const Metric& metric, const ZipOptions& zo, NodeLayout& layout,
+                StructuredMesh& out) {
   SurfaceMesh& mesh = out.mesh;
   StructuredReport& rep = out.report;
   std::vector<NodeSlot>& slots = layout.slots;
@@ -73,7 +74,7 @@ void close_ends(const SurfaceMesh& surface, const BBox3d& box, const FeatureSet&
   }
   const std::size_t before_caps = mesh.faces.size();
   const CapCounts caps =
-      cap_ends(surface, features, rows, nodes, first_vertex, metric, zo, mesh, slots);
+      cap_ends(surface, adjacency, features, rows, nodes, first_vertex, metric, zo, mesh, slots);
   rep.cap_quads = caps.quads;
   rep.cap_triangles = caps.triangles;
   rep.transoms = caps.transoms;
@@ -84,10 +85,10 @@ void close_ends(const SurfaceMesh& surface, const BBox3d& box, const FeatureSet&
   for (std::size_t j = 0; j < strips.size(); ++j)
     if (strips[j].unmatched) unpaired.push_back(j);
   const std::vector<std::size_t> joined =
-      join_rows(surface, rows, nodes, first_vertex, unpaired, metric, zo, mesh, slots);
+      join_rows(surface, adjacency, rows, nodes, first_vertex, unpaired, metric, zo, mesh, slots);
   rep.rows_unmatched -= joined.size();
   rep.rows_joined = joined.size();
-  const GapCounts gaps = close_border_gaps(surface, row_end, metric, mesh, slots);
+  const GapCounts gaps = close_border_gaps(surface, adjacency, row_end, metric, mesh, slots);
   rep.border_gaps = gaps.gaps;
   rep.cap_triangles += gaps.triangles;
   if (mesh.faces.size() > before_caps) {
@@ -108,8 +109,8 @@ void close_ends(const SurfaceMesh& surface, const BBox3d& box, const FeatureSet&
 }  // namespace
 
 StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
-                               const HullQuery& query, const FeatureSet& features,
-                               const StructuredOptions& options) {
+                               const EdgeAdjacency& adjacency, const HullQuery& query,
+                               const FeatureSet& features, const StructuredOptions& options) {
   using clock = std::chrono::steady_clock;
   StructuredMesh out;
   StructuredReport& rep = out.report;
@@ -123,7 +124,7 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
 
   t = clock::now();
   const std::vector<Row> rows =
-      extract_rows(query, surface, features, options.planes, plan, metric);
+      extract_rows(query, surface, adjacency, features, options.planes, plan, metric);
   rep.seconds_rows = seconds_since(t);
 
   t = clock::now();
@@ -140,7 +141,8 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   rep.seconds_grow = seconds_since(t);
   commit_strips(rows, strips, out);
 
-  close_ends(surface, query.bbox(), features, rows, nodes, strips, metric, zo, layout, out);
+  close_ends(surface, adjacency, query.bbox(), features, rows, nodes, strips, metric, zo, layout,
+             out);
 
   t = clock::now();
   relax_nodes(rows, slots, mesh.faces, mesh.positions, options.relax_passes);

@@ -49,6 +49,14 @@ struct Reader {
     return {number(j[0], key + "[0]"), number(j[1], key + "[1]"), number(j[2], key + "[2]")};
   }
 
+  // The entry's "name", or its key when it has none.
+  std::string name(const json& j, const std::string& key) {
+    if (!j.contains("name")) return key;
+    if (!j["name"].is_string()) fail(key + ".name", "must be a string");
+    const std::string n = j["name"].get<std::string>();
+    return n.empty() ? key : n;
+  }
+
   Vec3d size3(const json& j, const std::string& key) {
     const Vec3d s = vec3(j, key);
     if (!(s.x > 0 && s.y > 0 && s.z > 0)) fail(key, "every size must be > 0 m");
@@ -87,10 +95,7 @@ void read_block_file(const std::string& path, StructuredOptions& options) {
       const json& p = planes[i];
       r.only_keys(p, key, {"name", "x", "y", "z", "point", "normal"});
       BlockPlane bp;
-      if (p.contains("name")) {
-        if (!p["name"].is_string()) r.fail(key + ".name", "must be a string");
-        bp.name = p["name"].get<std::string>();
-      }
+      bp.name = r.name(p, key);
       int given = 0;
       for (int axis = 0; axis < 3; ++axis) {
         const char* a = axis == 0 ? "x" : axis == 1 ? "y" : "z";
@@ -112,7 +117,6 @@ void read_block_file(const std::string& path, StructuredOptions& options) {
       if (given != 1) {
         r.fail(key, "give exactly one of \"x\", \"y\", \"z\" or \"point\" with \"normal\"");
       }
-      if (bp.name.empty()) bp.name = key;
       options.planes.push_back(bp);
     }
   }
@@ -125,10 +129,7 @@ void read_block_file(const std::string& path, StructuredOptions& options) {
       const json& b = blocks[i];
       r.only_keys(b, key, {"name", "min", "max", "size"});
       SizeBox box;
-      if (b.contains("name")) {
-        if (!b["name"].is_string()) r.fail(key + ".name", "must be a string");
-        box.name = b["name"].get<std::string>();
-      }
+      box.name = r.name(b, key);
       if (!b.contains("size")) r.fail(key + ".size", "is required");
       box.size = r.size3(b["size"], key + ".size");
       const double inf = std::numeric_limits<double>::infinity();
@@ -137,7 +138,6 @@ void read_block_file(const std::string& path, StructuredOptions& options) {
       if (box.lo.x > box.hi.x || box.lo.y > box.hi.y || box.lo.z > box.hi.z) {
         r.fail(key, "\"min\" must not exceed \"max\" on any axis");
       }
-      if (box.name.empty()) box.name = key;
       options.size_boxes.push_back(box);
     }
   }

@@ -96,7 +96,7 @@ struct StructuredMesh {
 // query: built on the same surface. Deterministic and thread-count independent. Throws
 // UsageError for impossible options and GeometryError when the hull has no rows to grow.
 StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
-                               const HullQuery& query, const FeatureSet& features,
-                               const StructuredOptions& options);
+                               const EdgeAdjacency& adjacency, const HullQuery& query,
+                               const FeatureSet& features, const StructuredOptions& options);
 
 }  // namespace hm

@@ -16,6 +16,7 @@
 
 #include "core/types.h"
 #include "core/vec.h"
+#include "mesh/adjacency.h"
 #include "query/hull_query.h"
 #include "structured/structured.h"
 
@@ -89,8 +90,9 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
 // The hull's sections at the planned stations, refined on the NURBS, split at knuckles and
 // lateral planes. Parallel over stations.
 std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface,
-                              const FeatureSet& features, std::span<const BlockPlane> planes,
-                              const StationPlan& plan, const Metric& metric);
+                              const EdgeAdjacency& adj, const FeatureSet& features,
+                              std::span<const BlockPlane> planes, const StationPlan& plan,
+                              const Metric& metric);
 
 // --- grow ---------------------------------------------------------------------------------
 // Places the nodes of every row. Border rows get evenly spaced nodes between their breakpoints;

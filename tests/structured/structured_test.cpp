@@ -58,7 +58,7 @@ std::unique_ptr<Wetted> wetted(HullKind kind, int patches) {
 }
 
 StructuredMesh mesh(const Wetted& w, const StructuredOptions& o) {
-  return mesh_structured(w.hull.patches, w.cut.mesh, *w.query, w.features, o);
+  return mesh_structured(w.hull.patches, w.cut.mesh, w.adj, *w.query, w.features, o);
 }
 
 QualityReport quality(const StructuredMesh& m, double waterline) {
