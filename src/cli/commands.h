@@ -26,5 +26,6 @@ void register_quality(CLI::App& app, const GlobalOptions& global, Action& action
 void register_merge(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_structured(CLI::App& app, const GlobalOptions& global, Action& action);
+void register_render(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace hm::cli

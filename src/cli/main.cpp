@@ -37,6 +37,7 @@ int run(int argc, char** argv) {
   register_merge(app, global, action);
   register_unstructured(app, global, action);
   register_structured(app, global, action);
+  register_render(app, global, action);
 
   try {
     app.parse(argc, argv);
