@@ -36,7 +36,7 @@ int run_convert(const ConvertOptions& o, const GlobalOptions& g) {
     w.info.symmetry.about_x0 = o.symmetry == "x" || o.symmetry == "xy";
   }
   if (!o.title.empty()) w.info.title = o.title;
-  if (w.info.title.empty()) w.info.title = "hullmesh convert " + o.input;
+  if (w.info.title.empty()) w.info.title = "hullmesh convert " + file_name(o.input);
   if (o.ulen > 0) w.info.ulen = o.ulen;
   if (o.grav > 0) w.info.grav = o.grav;
   w.stl_ascii = o.stl_ascii;

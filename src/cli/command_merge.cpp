@@ -57,7 +57,7 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   if (!adj.nonmanifold_edges.empty()) {
     // Keep the surface for inspection, but fail: no later stage can use it.
     MeshWriteOptions w;
-    w.info.title = "hullmesh merged surface (non-manifold) of " + c.file;
+    w.info.title = "hullmesh merged surface (non-manifold) of " + file_name(c.file);
     write_mesh(c.output, merged.mesh, w);
     check_merged_manifold(
         c.file, merged.mesh, adj,
@@ -82,7 +82,7 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   }
   write_polylines(boundary_path, runs);
   MeshWriteOptions w;
-  w.info.title = "hullmesh merged surface of " + c.file;
+  w.info.title = "hullmesh merged surface of " + file_name(c.file);
   write_mesh(c.output, merged.mesh, w);
 
   if (!g.quiet) {

@@ -83,7 +83,7 @@ int run_quality(const QualityCliOptions& o, const GlobalOptions& g) {
   if (!o.vtu.empty()) {
     MeshWriteOptions w;
     w.face_fields = face_fields(report);
-    w.info.title = "hullmesh quality " + o.file;
+    w.info.title = "hullmesh quality " + file_name(o.file);
     write_mesh(o.vtu, file.mesh, w);
   }
   return report.passes(q.rules) ? static_cast<int>(ExitCode::kOk)

@@ -14,6 +14,7 @@
 #include "cli/floating_options.h"
 #include "cli/load_hull.h"
 #include "cli/prepare_hull.h"
+#include "cli/run_record.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
 #include "mesh/mirror_mesh.h"
@@ -69,6 +70,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   pa.cut_centre_plane = !heeled;
   pa.features = c.features;
   pa.quiet = g.quiet;
+  RunRecord& record = *g.record;
+  pa.progress = &record.log;
   // The rows are cut from the NURBS, so a denser fine mesh costs only time: the structured
   // mesher tries twice more before it gives up on a merge (issue 4's open failures).
   pa.finer_retries = 2;
@@ -78,9 +81,11 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   PreparedHull ph;
   prepare_hull(pa, ph);
   const SurfaceMesh& fine = ph.fine();
+  record.log.stage("query");
   const long long t0 = now_ns();
   const HullQuery query(ph.patches(), fine);
   const double t_query = seconds_since(t0);
+  record.log.stage("structured");
   const long long t1 = now_ns();
   StructuredMesh sm =
       mesh_structured(ph.patches(), fine, ph.adjacency, query, ph.features, c.structured);
@@ -93,6 +98,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   // A cap or fan panel whose corners all ended on the centre plane (a Wigley's forefoot).
   const std::size_t on_plane_dropped =
       ph.file_half || ph.centre_cut ? drop_centre_plane_faces(panels) : 0;
+  record.log.stage("report");
   const long long t2 = now_ns();
   const DeviationMeasure dev = measure_deviation(query, panels);
   const SurfaceMesh* output = &panels;
@@ -110,12 +116,25 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   qo.rules.min_triangle_angle_share = 0;
   if (ph.floating) qo.waterline_z = 0;
   const QualityReport quality = assess_quality(*output, qo);
+  std::optional<HydrostaticsPair> hydro;
+  if (ph.floating) hydro = compare_hydrostatics(ph, *output, quality.half_hull);
   const double t_report = seconds_since(t2);
 
   MeshWriteOptions w;
-  w.info.title = "hullmesh structured panels of " + c.file;
+  w.info.title = "hullmesh structured panels of " + file_name(c.file);
   w.info.symmetry.about_y0 = quality.half_hull;
+  record.log.stage("write");
   write_mesh(c.output, *output, w);
+  record.log.finish();
+  record.input = c.file;
+  record.outputs = {c.output};
+  record.quality = quality_summary(quality, qo.rules);
+  record.results = {{"panel_size_m", {r.size.x, r.size.y, r.size.z}},
+                    {"stations", r.stations},
+                    {"blocks", r.blocks.size()},
+                    {"deviation_max_m", dev.max},
+                    {"deviation_mean_m", dev.mean}};
+  if (hydro) record.results["hydrostatics"] = hydrostatics_summary(hydro->mesh, &hydro->nurbs);
 
   if (!g.quiet) {
     std::printf("%s: %zu panels (%zu quads, %zu triangles), %zu vertices\n", c.output.c_str(),
@@ -177,6 +196,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                 quality.max_warp, quality.knuckle_edges);
     std::printf("  deviation from the NURBS: max %.3g m at (%.4g, %.4g, %.4g), mean %.3g m\n",
                 dev.max, dev.where.x, dev.where.y, dev.where.z, dev.mean);
+    if (hydro) print_hydrostatics(hydro->mesh, hydro->nurbs);
     std::printf(
         "  topology: %zu boundary loops, %zu non-manifold edges, %zu free edges below "
         "the waterline, orientation %s\n",

@@ -31,7 +31,7 @@ int run_tessellate(const TessellateCommand& c, const GlobalOptions& g) {
   const Tessellation t = tessellate(hull.patches, o, silent_progress());
   const long long t1 = now_ns();
   MeshWriteOptions w;
-  w.info.title = "hullmesh tessellation of " + c.file;
+  w.info.title = "hullmesh tessellation of " + file_name(c.file);
   w.face_fields.push_back({"chord_error", t.chord_error});
   write_mesh(c.output, t.mesh, w);
   const double t_write = seconds_since(t1);

@@ -16,6 +16,7 @@
 #include "cli/floating_options.h"
 #include "cli/load_hull.h"
 #include "cli/prepare_hull.h"
+#include "cli/run_record.h"
 #include "core/bbox.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
@@ -88,6 +89,8 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   pa.merge = c.merge;
   pa.features = c.features;
   pa.quiet = g.quiet;
+  RunRecord& record = *g.record;
+  pa.progress = &record.log;
   const std::size_t panels = c.coarsen.target_panels > 0 ? c.coarsen.target_panels : 4000;
   pa.fine_triangles = c.triangles;
   if (pa.fine_triangles == 0 && c.tessellate.edge_length <= 0) {
@@ -110,13 +113,13 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   const double t_features = ph.seconds_features;
 
   c.coarsen.fine_chord_error = t.summary.max_chord_error;
-  const CoarsenedMesh panels_mesh =
-      coarsen(patches, fine, adj, features, c.coarsen, silent_progress());
+  const CoarsenedMesh panels_mesh = coarsen(patches, fine, adj, features, c.coarsen, record.log);
   const CoarsenReport& r = panels_mesh.report;
   // The panels; a half hull's open side exactly on y = 0 (its file may draw it a little off).
   SurfaceMesh coarse = panels_mesh.mesh;
   const std::size_t centre_snapped =
       file_half || centre_cut ? snap_to_centre_plane(coarse, centre_tol) : 0;
+  record.log.stage("report");
   const long long t2 = now_ns();
   const HullQuery query(patches, fine);
   const DeviationMeasure dev = measure_deviation(query, coarse);
@@ -140,27 +143,28 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   // the panels' geometric accuracy.
   std::optional<Hydrostatics> hydro_mesh, hydro_nurbs;
   if (floating) {
-    FloatingPosition position;
-    position.waterline_z = 0;
-    position.half_hull = quality.half_hull;
-    hydro_mesh = hydrostatics_mesh(*output, position);
-    // The NURBS integrals follow each patch's declared normal: turn the patches the merge found
-    // wound into the hull, as it turned their faces. 1e-9 relative is ample against panels.
-    std::vector<Patch> outward(patches.begin(), patches.end());
-    for (PatchId p : merged.report.patches_flipped) outward[p].reversed = !outward[p].reversed;
-    NurbsHydrostaticsOptions ho;
-    ho.rel_tol = 1e-9;
-    position.half_hull = file_half;
-    hydro_nurbs = hydrostatics_nurbs(outward, position, ho);
+    const HydrostaticsPair h = compare_hydrostatics(ph, *output, quality.half_hull);
+    hydro_mesh = h.mesh;
+    hydro_nurbs = h.nurbs;
   }
   const double t_report = seconds_since(t2);
 
   MeshWriteOptions w;
-  w.info.title = "hullmesh unstructured panels of " + c.file;
+  w.info.title = "hullmesh unstructured panels of " + file_name(c.file);
   // A half hull goes out with its symmetry flag wherever the format has one (a panel code
   // would otherwise take it for half a ship).
   w.info.symmetry.about_y0 = quality.half_hull;
+  record.log.stage("write");
   write_mesh(c.output, *output, w);
+  record.log.finish();
+  record.input = c.file;
+  record.outputs = {c.output};
+  record.quality = quality_summary(quality, qo.rules);
+  record.results = {{"panel_size_m", r.panel_size},       {"collapses", r.collapses},
+                    {"target_reached", r.target_reached}, {"quality_index_mean", r.mean_quality},
+                    {"quality_index_min", r.min_quality}, {"deviation_max_m", dev.max},
+                    {"deviation_mean_m", dev.mean}};
+  if (hydro_mesh) record.results["hydrostatics"] = hydrostatics_summary(*hydro_mesh, &*hydro_nurbs);
 
   if (!g.quiet) {
     std::printf("%s: %zu panels, %zu vertices (from %zu fine triangles)\n", c.output.c_str(),
@@ -215,14 +219,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
           "snapped onto the plane, %zu new on the waterline (%zu not refined to tolerance)\n",
           cr.faces_kept, cr.faces_in, cr.faces_split, cr.vertices_snapped, cr.edges_cut,
           cr.unconverged);
-      auto rel = [](double a, double b) { return b != 0 ? 100 * (a - b) / b : 0.0; };
-      std::printf(
-          "  hydrostatics, mesh against NURBS: volume %.6g m^3 (%+.3f%%), wetted area %.6g m^2 "
-          "(%+.3f%%), waterplane area %.6g m^2 (%+.3f%%), LCB %.5g m (NURBS %.5g)\n",
-          hydro_mesh->volume, rel(hydro_mesh->volume, hydro_nurbs->volume), hydro_mesh->wetted_area,
-          rel(hydro_mesh->wetted_area, hydro_nurbs->wetted_area), hydro_mesh->waterplane_area,
-          rel(hydro_mesh->waterplane_area, hydro_nurbs->waterplane_area),
-          hydro_mesh->buoyancy_centre.x, hydro_nurbs->buoyancy_centre.x);
+      print_hydrostatics(*hydro_mesh, *hydro_nurbs);
       std::printf("  free edges below the waterline: %zu\n", quality.topology.free_edges_below);
     }
     std::printf("  topology: %zu boundary loops, %zu non-manifold edges, orientation %s\n",

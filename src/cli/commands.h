@@ -3,16 +3,29 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <functional>
+#include <string>
 
 namespace hm::cli {
+
+struct RunRecord;  // cli/run_record.h
 
 // Options every command shares.
 struct GlobalOptions {
   int threads = 0;  // 0 = all cores
   bool quiet = false;
   bool verbose = false;
+  bool no_record = false;  // --no-run-json: no `*.run.json` beside the output
+  // The current run's stage log and record, set before the action runs (never null then).
+  RunRecord* record = nullptr;
 };
+
+// A path's last part: what titles inside output files carry, so that one job run from two
+// folders writes the same bytes.
+inline std::string file_name(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
 
 // The command to run after parsing; returns the exit code.
 using Action = std::function<int()>;
@@ -27,5 +40,7 @@ void register_merge(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_structured(CLI::App& app, const GlobalOptions& global, Action& action);
 void register_render(CLI::App& app, const GlobalOptions& global, Action& action);
+void register_run(CLI::App& app, const GlobalOptions& global, Action& action);
+void register_batch(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace hm::cli

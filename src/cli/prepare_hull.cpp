@@ -18,7 +18,39 @@ double hull_length(const SurfaceMesh& m) {
   return std::max({e.x, e.y, e.z});
 }
 
+HydrostaticsPair compare_hydrostatics(const PreparedHull& hull, const SurfaceMesh& panels,
+                                      bool panels_half_hull) {
+  HydrostaticsPair h;
+  FloatingPosition position;
+  position.waterline_z = 0;
+  position.half_hull = panels_half_hull;
+  h.mesh = hydrostatics_mesh(panels, position);
+  // The NURBS integrals follow each patch's declared normal: turn the patches the merge found
+  // wound into the hull, as it turned their faces. 1e-9 relative is ample against panels.
+  const std::span<const Patch> patches = hull.patches();
+  std::vector<Patch> outward(patches.begin(), patches.end());
+  for (PatchId p : hull.merged.report.patches_flipped) outward[p].reversed = !outward[p].reversed;
+  NurbsHydrostaticsOptions ho;
+  ho.rel_tol = 1e-9;
+  position.half_hull = hull.file_half;
+  h.nurbs = hydrostatics_nurbs(outward, position, ho);
+  return h;
+}
+
+void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs) {
+  auto rel = [](double a, double b) { return b != 0 ? 100 * (a - b) / b : 0.0; };
+  std::printf(
+      "  hydrostatics, mesh against NURBS: volume %.6g m^3 (%+.3f%%), wetted area %.6g m^2 "
+      "(%+.3f%%), waterplane area %.6g m^2 (%+.3f%%), LCB %.5g m (NURBS %.5g)\n",
+      mesh.volume, rel(mesh.volume, nurbs.volume), mesh.wetted_area,
+      rel(mesh.wetted_area, nurbs.wetted_area), mesh.waterplane_area,
+      rel(mesh.waterplane_area, nurbs.waterplane_area), mesh.buoyancy_centre.x,
+      nurbs.buoyancy_centre.x);
+}
+
 void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
+  Progress& progress = args.progress ? *args.progress : silent_progress();
+  progress.stage("import");
   const long long t0 = now_ns();
   out.hull = load_hull(args.file, args.units, args.quiet);
   FeatureOptions features = args.features;
@@ -34,7 +66,12 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
                        "the full hull to mesh it heeled (hullmesh does not yet mirror a half "
                        "hull before meshing)");
     }
-    out.floating = resolve_floating(args.floating, out.hull.patches, out.hull.bbox);
+    try {
+      out.floating = resolve_floating(args.floating, out.hull.patches, out.hull.bbox);
+    } catch (const UsageError& e) {
+      // A batch runs many hulls: the message must say which one cannot float so.
+      throw UsageError(args.file + ": " + e.what());
+    }
     out.placed = transformed(out.hull.patches, out.floating->transform);
     features.waterline_z = 0;
   }
@@ -49,8 +86,11 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     TessellateOptions o = args.tessellate;
     if (triangles > 0 && o.edge_length <= 0)
       o.edge_length = edge_length_for_triangles(patches, triangles);
-    out.tessellation = tessellate(patches, o, silent_progress());
-    out.merged = merge_patches(patches, out.tessellation.mesh, args.merge, silent_progress());
+    progress.stage("tessellate");
+    out.tessellation = tessellate(patches, o, progress);
+    progress.stage("merge");
+    out.merged = merge_patches(patches, out.tessellation.mesh, args.merge, progress);
+    progress.stage("cut");
     // The cuts before meshing: the waterplane, then the centre plane when one half of a full
     // hull is wanted.
     out.centre_tol = 2e-4 * hull_length(out.merged.mesh);
@@ -79,6 +119,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     out.retried_triangles = triangles * 2;
     triangles = triangles * 2;
   }
+  progress.stage("features");
   const long long t1 = now_ns();
   const SurfaceMesh& fine = out.fine();
   check_merged_manifold(args.file, fine, out.adjacency,

@@ -11,6 +11,7 @@
 #include "cli/floating_options.h"
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
+#include "quality/hydrostatics.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/cut_at_plane.h"
 #include "unstructured/features.h"
@@ -31,6 +32,8 @@ struct PrepareArgs {
   // Times the fine mesh may be made twice as dense when the merge leaves non-manifold edges (only
   // when fine_triangles sizes it).
   int finer_retries = 0;
+  // Told each stage as it starts (import, tessellate, merge, cut, features); null: silent.
+  Progress* progress = nullptr;
 };
 
 // Not movable: it is filled in place and read through its accessors.
@@ -65,6 +68,17 @@ struct PreparedHull {
 // import, merge and the cuts throw; GeometryError (exit 5) when the merged surface is not
 // edge-manifold, naming where.
 void prepare_hull(const PrepareArgs& args, PreparedHull& out);
+
+// The panels' hydrostatics at the waterplane z = 0 of the floating frame, and the same
+// integrals on the NURBS (the exact values they approximate). Only for a floating hull.
+struct HydrostaticsPair {
+  Hydrostatics mesh, nurbs;
+};
+HydrostaticsPair compare_hydrostatics(const PreparedHull& hull, const SurfaceMesh& panels,
+                                      bool panels_half_hull);
+
+// One line: volume, wetted and waterplane area, LCB of the panels against the NURBS.
+void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs);
 
 // Largest extent of the mesh's bounding box, m.
 double hull_length(const SurfaceMesh& m);

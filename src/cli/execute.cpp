@@ -1,0 +1,87 @@
+#include "cli/execute.h"
+
+#include <algorithm>
+#include <regex>
+
+#include "cli/run_record.h"
+#include "core/error.h"
+
+namespace hm::cli {
+
+const CLI::App* Invocation::command() const {
+  const auto parsed = app->get_subcommands();
+  return parsed.empty() ? nullptr : parsed.front();
+}
+
+std::unique_ptr<Invocation> make_invocation() {
+  auto inv = std::make_unique<Invocation>();
+  inv->app = std::make_unique<CLI::App>(
+      "hullmesh " HULLMESH_VERSION
+      ": panel meshes of ship hulls from IGES NURBS patches, for panel codes");
+  CLI::App& app = *inv->app;
+  app.require_subcommand(1);
+  // Global options may also follow the command name: `hullmesh info -q FILE`.
+  app.fallthrough();
+  // Every option's default is kept, so that a run record can name each effective value.
+  app.option_defaults()->always_capture_default();
+  app.set_version_flag("--version", "hullmesh " HULLMESH_VERSION);
+  GlobalOptions& global = inv->global;
+  app.add_option("--threads", global.threads, "Threads to use (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
+  app.add_flag("-q,--quiet", global.quiet, "Print only errors");
+  app.add_flag("-v,--verbose", global.verbose, "Print more detail");
+  app.add_flag("--no-run-json", global.no_record,
+               "Do not write the *.run.json record beside an output mesh");
+  Action& action = inv->action;
+  register_info(app, global, action);
+  register_generate(app, global, action);
+  register_tessellate(app, global, action);
+  register_section(app, global, action);
+  register_convert(app, global, action);
+  register_quality(app, global, action);
+  register_merge(app, global, action);
+  register_unstructured(app, global, action);
+  register_structured(app, global, action);
+  register_render(app, global, action);
+  register_run(app, global, action);
+  register_batch(app, global, action);
+  return inv;
+}
+
+ExecuteResult execute(Invocation& inv, const ExecuteOptions& options) {
+  ExecuteResult result;
+  if (!inv.action) return result;
+  if (options.force_quiet) inv.global.quiet = true;
+  RunRecord record(RunLog::mode_for(inv.global.quiet));
+  if (const CLI::App* cmd = inv.command()) {
+    record.command = cmd->get_name();
+    record.parameters = effective_options(*cmd);
+  }
+  inv.global.record = &record;
+  result.exit_code = inv.action();
+  record.log.finish();
+  inv.global.record = nullptr;
+  if (result.exit_code == 0 && !record.outputs.empty()) {
+    result.record = record_json(record);
+    if (options.write_record && !inv.global.no_record) write_run_record(record);
+  }
+  return result;
+}
+
+ExecuteResult execute_args(const std::vector<std::string>& args, const std::string& where,
+                           const ExecuteOptions& options) {
+  auto inv = make_invocation();
+  // CLI11 takes the words last first.
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    inv->app->parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    // "--panels: Value 0 not in range ..." reads, for a job file, as the key it came from.
+    std::string message =
+        std::regex_replace(std::string(e.what()), std::regex("--([a-z0-9-]+)"), "key '$1'");
+    throw UsageError(where + ": " + message);
+  }
+  return execute(*inv, options);
+}
+
+}  // namespace hm::cli
