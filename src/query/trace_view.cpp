@@ -167,9 +167,11 @@ ViewCamera fit_view_camera(const SurfaceMesh& mesh, ViewKind kind, std::uint32_t
     case ViewKind::kBodyPlan:
       return fit_body_plan(box, width, margin, max_height);
     case ViewKind::kIso: {
-      // From (+x, side, +z): the bow quarter above, on the side the mesh shows.
+      // The bow quarter from below, on the side the mesh shows: 35 deg forward of the beam and
+      // 25 deg down. A true isometric (equal angles) of a hull 20 times longer than deep is a
+      // thin diagonal strip; this shows the wetted bottom, the bow and the side together.
       const double side = shown_side(box);
-      const Vec3d dir = normalized(Vec3d{-1, -side, -1});
+      const Vec3d dir = normalized(Vec3d{-0.52, -0.74 * side, 0.42});
       const Vec3d up = normalized(z - dot(z, dir) * dir);
       return fit_single(mesh, box, cross(dir, up), up, dir, width, margin, max_height);
     }

@@ -20,7 +20,7 @@ enum class ViewKind : std::uint8_t {
   kPlan,      // looking up from below (+z), drawn with x to the right and y up
   kBodyPlan,  // fore body (x >= midship) from ahead on the right half, aft body from astern on
               // the left half; both halves show one side of the centre plane, mirrored about it
-  kIso,       // isometric, from above the bow quarter on the hull's side
+  kIso,       // the bow quarter from below (35 deg forward of the beam, 25 deg down)
 };
 
 // One orthographic camera over the picture columns [first_column, first_column + columns).

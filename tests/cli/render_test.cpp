@@ -2,6 +2,7 @@
 // projected area computed here) and its colours follow the chosen data.
 #include <gtest/gtest.h>
 #include <png.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -187,7 +188,8 @@ std::array<double, 3> centroid(const ObjMesh& m, std::size_t f) {
 class RenderCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(test::scratch_dir("cli_render"));
+    // ctest runs each test in its own process, two at a time: one folder per process.
+    dir_ = new fs::path(test::scratch_dir("cli_render_" + std::to_string(::getpid())));
     const auto g = run_hullmesh(
         "-q generate wigley --patches 2 --length 100 --beam 10 --draft 6.25 "
         "--depth 8 -o '" +
