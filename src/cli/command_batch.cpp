@@ -35,6 +35,7 @@ void parse_shard(const std::string& text, BatchOptions& o) {
   if (o.shards == 0 || o.shard >= o.shards || o.shards > 100'000) {
     throw UsageError("--shard " + text + ": need 0 <= K < N <= 100000");
   }
+  o.sharded = true;
 }
 
 int run_batch_command(const BatchCommand& c, const GlobalOptions& g) {

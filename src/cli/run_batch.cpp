@@ -46,6 +46,8 @@ class StopSignals {
     g_stop = 0;
     int_ = std::signal(SIGINT, on_stop_signal);
     term_ = std::signal(SIGTERM, on_stop_signal);
+    // A batch started in the background of a script (SIGINT ignored) keeps ignoring it.
+    if (int_ == SIG_IGN) std::signal(SIGINT, SIG_IGN);
   }
   ~StopSignals() {
     std::signal(SIGINT, int_);
@@ -378,7 +380,7 @@ BatchResult run_batch(const Manifest& m, const BatchOptions& o) {
       });
   result.interrupted = signals.stopped();
   count(result);
-  const bool sharded = o.shards > 1;
+  const bool sharded = o.sharded;
   write_summary(o.out_dir, sharded ? shard_stem(o.shard, o.shards) : "summary", m, result,
                 sharded ? std::to_string(o.shard) + "/" + std::to_string(o.shards) : "");
   return result;

@@ -14,6 +14,7 @@ namespace hm::cli {
 struct BatchOptions {
   std::string out_dir;
   std::size_t shard = 0, shards = 1;  // run shard `shard` of `shards`
+  bool sharded = false;               // --shard given: the summary is the shard's (even for 0/1)
   bool rerun = false;                 // ignore finished jobs' records and run everything again
   RunLog::Mode display = RunLog::Mode::kLines;
 };
