@@ -55,6 +55,7 @@ int run_batch_command(const BatchCommand& c, const GlobalOptions& g) {
     o.rerun = c.rerun;
     if (!c.shard.empty()) parse_shard(c.shard, o);
     o.display = RunLog::mode_for(g.quiet);
+    o.verbose = g.verbose && !g.quiet;
     r = run_batch(m, o);
     what = r.interrupted ? "interrupted" : "done";
   }

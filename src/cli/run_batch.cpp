@@ -296,6 +296,12 @@ class BatchDisplay {
   std::mutex mutex_;
 };
 
+void print_words(const BatchJob& job, const ordered_json& words) {
+  std::string line = "hullmesh: batch " + job.id + " starts: hullmesh";
+  for (const ordered_json& w : words) line += " " + w.get<std::string>();
+  std::fprintf(stderr, "%s\n", line.c_str());
+}
+
 void generate_hulls(const Manifest& m) {
   for (const BatchHull& h : m.hulls) {
     if (!h.generate) continue;
@@ -366,6 +372,7 @@ BatchResult run_batch(const Manifest& m, const BatchOptions& o) {
               ordered_json rec;
               if (!o.rerun) rec = finished_record(o.out_dir, job, spec, hull_sha[job.hull]);
               reused = !rec.is_null();
+              if (!reused && o.verbose) print_words(job, spec["words"]);
               if (!reused) rec = run_job(m, job, o.out_dir, spec);
               row = ok_row(m, job, rec, reused);
               ok = true;
