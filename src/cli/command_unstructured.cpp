@@ -95,6 +95,10 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   pa.fine_triangles = c.triangles;
   if (pa.fine_triangles == 0 && c.tessellate.edge_length <= 0) {
     pa.fine_triangles = std::clamp(kFinePerPanel * panels, kFineMin, kFineMax);
+    // As the structured mesher does: a merge left non-manifold at one resolution (issue 4's
+    // open failures, on kcs and npl) is tried twice more at twice the density; only the
+    // fine mesh the coarsening starts from changes.
+    pa.finer_retries = 2;
   }
   PreparedHull ph;
   prepare_hull(pa, ph);
