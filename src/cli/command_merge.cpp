@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/load_hull.h"
+#include "cli/run_record.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
 #include "io/write_polylines.h"
@@ -45,13 +46,18 @@ std::vector<PolylineRecord> to_records(const SurfaceMesh& m, std::span<const Fea
 
 int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   check_mesh_output(c.output);
+  RunRecord& record = *g.record;
+  record.log.stage("import");
   const long long t0 = now_ns();
   const ImportResult hull = load_hull(c.file, c.units, g.quiet);
   const double t_import = seconds_since(t0);
   TessellateOptions o = c.tessellate;
   if (c.triangles > 0) o.edge_length = edge_length_for_triangles(hull.patches, c.triangles);
-  const Tessellation t = tessellate(hull.patches, o, silent_progress());
-  const MergedSurface merged = merge_patches(hull.patches, t.mesh, c.merge, silent_progress());
+  record.log.stage("tessellate");
+  const Tessellation t = tessellate(hull.patches, o, record.log);
+  record.log.stage("merge");
+  const MergedSurface merged = merge_patches(hull.patches, t.mesh, c.merge, record.log);
+  record.log.stage("features");
   const long long t1 = now_ns();
   const EdgeAdjacency adj = build_edge_adjacency(merged.mesh.faces, merged.mesh.vertex_count());
   if (!adj.nonmanifold_edges.empty()) {
@@ -83,7 +89,19 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   write_polylines(boundary_path, runs);
   MeshWriteOptions w;
   w.info.title = "hullmesh merged surface of " + file_name(c.file);
+  record.log.stage("write");
   write_mesh(c.output, merged.mesh, w);
+  record.log.finish();
+  record.input = c.file;
+  record.outputs = {c.output, knuckle_path, boundary_path};
+  record.results = {{"triangles", merged.mesh.face_count()},
+                    {"vertices", merged.mesh.vertex_count()},
+                    {"gaps_closed", merged.report.gaps_closed},
+                    {"gaps_open", merged.report.open_gaps.size()},
+                    {"overlap_triangles_removed", merged.report.overlap_triangles_removed},
+                    {"patches_flipped", merged.report.patches_flipped.size()},
+                    {"knuckle_lines", features.knuckles.size()},
+                    {"boundary_runs", features.boundaries.size()}};
 
   if (!g.quiet) {
     const MergeReport& r = merged.report;

@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/load_hull.h"
+#include "cli/run_record.h"
 #include "io/write_mesh.h"
 #include "tessellate/tessellate.h"
 
@@ -21,6 +22,8 @@ struct TessellateCommand {
 };
 
 int run_tessellate(const TessellateCommand& c, const GlobalOptions& g) {
+  RunRecord& record = *g.record;
+  record.log.stage("import");
   const long long t0 = now_ns();
   const ImportResult hull = load_hull(c.file, c.units, g.quiet);
   const double t_import = seconds_since(t0);
@@ -28,13 +31,23 @@ int run_tessellate(const TessellateCommand& c, const GlobalOptions& g) {
   const double length = hull.bbox.empty() ? 0.0 : hull.bbox.extent().x;
   if (c.chord_relative > 0) o.chord_tolerance = c.chord_relative * std::max(length, 1e-12);
   if (c.triangles > 0) o.edge_length = edge_length_for_triangles(hull.patches, c.triangles);
-  const Tessellation t = tessellate(hull.patches, o, silent_progress());
+  record.log.stage("tessellate");
+  const Tessellation t = tessellate(hull.patches, o, record.log);
+  record.log.stage("write");
   const long long t1 = now_ns();
   MeshWriteOptions w;
   w.info.title = "hullmesh tessellation of " + file_name(c.file);
   w.face_fields.push_back({"chord_error", t.chord_error});
   write_mesh(c.output, t.mesh, w);
   const double t_write = seconds_since(t1);
+  record.log.finish();
+  record.input = c.file;
+  record.outputs = {c.output};
+  record.results = {{"triangles", t.summary.triangles},
+                    {"vertices", t.summary.vertices},
+                    {"edge_length_m", t.summary.edge_length},
+                    {"chord_tolerance_m", t.summary.chord_tolerance},
+                    {"max_chord_error_m", t.summary.max_chord_error}};
   if (!g.quiet) {
     const TessellateSummary& s = t.summary;
     std::printf("%s: %zu patches -> %zu triangles, %zu vertices\n", c.output.c_str(), s.patches,

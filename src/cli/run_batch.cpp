@@ -216,14 +216,16 @@ ordered_json finished_record(const std::string& out_dir, const BatchJob& job,
 }
 
 // Temporary files a killed run left behind for this job (io/atomic_file names them
-// ".NAME.tmp.PID.N"). Only this job's: another shard may be writing its own beside them.
+// ".NAME.tmp.PID.N"). Only this job's own names: another shard may be writing beside them, and
+// one id can begin another ("..._panels-1" and "..._panels-1.5").
 void remove_stale_temps(const std::string& out_dir, const BatchJob& job) {
+  std::vector<std::string> prefixes = {"." + job.id + ".run.json.tmp."};
+  for (const std::string& ext : job.formats) prefixes.push_back("." + job.id + "." + ext + ".tmp.");
   std::error_code ec;
-  const std::string prefix = "." + job.id + ".";
   for (const auto& e : fs::directory_iterator(out_dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (name.rfind(prefix, 0) == 0 && name.find(".tmp.") != std::string::npos) {
-      fs::remove(e.path(), ec);
+    for (const std::string& p : prefixes) {
+      if (name.rfind(p, 0) == 0) fs::remove(e.path(), ec);
     }
   }
 }

@@ -149,6 +149,14 @@ TEST(CliRunRecord, MeshersRecordEveryParameterStagesAndQuality) {
   EXPECT_NEAR(rec["seconds"].get<double>(), sum, 1e-9);
   EXPECT_NEAR(rec["quality"]["panels"].get<int>(), 300, 3);
   EXPECT_LT(std::abs(rec["results"]["hydrostatics"]["volume_error"].get<double>()), 0.02);
+  // The other commands that write meshes from a hull keep records too.
+  ASSERT_EQ(run_hullmesh("-q merge " + q(dir / "c.igs") + " -o " + q(dir / "m.vtu")).exit_code, 0);
+  const json merged = read_json(dir / "m.run.json");
+  ASSERT_EQ(merged["outputs"].size(), 3u);  // the surface, its knuckles and its boundaries
+  EXPECT_GT(merged["results"]["knuckle_lines"].get<int>(), 0);
+  ASSERT_EQ(run_hullmesh("-q tessellate " + q(dir / "c.igs") + " -o " + q(dir / "t.vtu")).exit_code,
+            0);
+  EXPECT_GT(read_json(dir / "t.run.json")["results"]["triangles"].get<int>(), 100);
   // --no-run-json leaves the record out.
   ASSERT_EQ(run_hullmesh("-q --no-run-json structured " + q(dir / "c.igs") + " -o " +
                          q(dir / "s.gdf") + " --panels 100")
