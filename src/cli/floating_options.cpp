@@ -3,7 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
+#include <vector>
 
+#include "cli/load_hull.h"
 #include "core/error.h"
 
 namespace hm::cli {
@@ -18,13 +21,50 @@ void add_floating_options(CLI::App* cmd, FloatingArgs& a) {
   cmd->add_option("--baseline-z", a.baseline_z,
                   "z of the baseline --draft is measured from, m (default: the hull's lowest "
                   "point)");
-  cmd->add_option("--trim", a.trim_deg, "Trim angle, degrees, bow down positive")
-      ->check(CLI::Range(-45.0, 45.0));
+  auto* trim = cmd->add_option("--trim", a.trim_deg, "Trim angle, degrees, bow down positive")
+                   ->check(CLI::Range(-45.0, 45.0));
   cmd->add_option("--heel", a.heel_deg, "Heel angle, degrees, starboard down positive")
       ->check(CLI::Range(-60.0, 60.0));
-  cmd->add_option("--pivot-x", a.pivot_x,
-                  "x of the trim pivot, m (default: the middle of the hull's length)");
+  auto* pivot = cmd->add_option(
+      "--pivot-x", a.pivot_x, "x of the trim pivot, m (default: the middle of the hull's length)");
+  cmd->add_option("--drafts", a.drafts,
+                  "TA,TF: drafts at the aft and forward perpendiculars above the baseline, m "
+                  "(instead of --draft and --trim)")
+      ->excludes(draft)
+      ->excludes(wl)
+      ->excludes(trim)
+      ->excludes(pivot);
+  cmd->add_option("--perpendiculars", a.perpendiculars,
+                  "XA,XF: x of the aft and forward perpendiculars for --drafts, m (default: the "
+                  "hull's aft and forward ends)");
 }
+
+namespace {
+
+// --drafts TA,TF as a draft at the middle of the perpendiculars and the trim between them: the
+// waterplane through both draft marks, measured square to the baseline.
+void drafts_at_perpendiculars(const FloatingArgs& a, const BBox3d& box, double& draft,
+                              double& trim_deg, double& pivot_x) {
+  const std::vector<double> t = parse_numbers(a.drafts, 2, "--drafts");
+  double xa = box.lo.x, xf = box.hi.x;
+  if (!a.perpendiculars.empty()) {
+    const std::vector<double> x = parse_numbers(a.perpendiculars, 2, "--perpendiculars");
+    xa = x[0];
+    xf = x[1];
+  }
+  if (!(xf > xa)) {
+    throw UsageError("--perpendiculars " + a.perpendiculars +
+                     ": the forward perpendicular must lie ahead of the aft one (XF > XA)");
+  }
+  trim_deg = std::atan((t[1] - t[0]) / (xf - xa)) * 180 / std::numbers::pi;
+  if (std::abs(trim_deg) > 45) {
+    throw UsageError("--drafts " + a.drafts + ": a trim of more than 45 degrees");
+  }
+  pivot_x = 0.5 * (xa + xf);
+  draft = 0.5 * (t[0] + t[1]);
+}
+
+}  // namespace
 
 Floating resolve_floating(const FloatingArgs& a, std::span<const Patch> patches,
                           const BBox3d& box) {
@@ -33,9 +73,13 @@ Floating resolve_floating(const FloatingArgs& a, std::span<const Patch> patches,
   f.pivot_x = a.pivot_x.value_or(0.5 * (box.lo.x + box.hi.x));
   f.trim_deg = a.trim_deg;
   f.heel_deg = a.heel_deg;
-  // Without a draft or a waterline, the waterplane is the file's z = 0.
-  const double waterline_z = a.waterline_z.value_or(a.draft ? f.baseline_z + *a.draft : 0.0);
-  f.draft = waterline_z - f.baseline_z;
+  if (!a.drafts.empty()) {
+    drafts_at_perpendiculars(a, box, f.draft, f.trim_deg, f.pivot_x);
+  } else {
+    // Without a draft or a waterline, the waterplane is the file's z = 0.
+    const double waterline_z = a.waterline_z.value_or(a.draft ? f.baseline_z + *a.draft : 0.0);
+    f.draft = waterline_z - f.baseline_z;
+  }
   const Placement p = floating_placement(f.draft, f.trim_deg, f.heel_deg, f.baseline_z, f.pivot_x);
   f.transform = p.transform;
   f.transform.translation.z -= p.waterline_z;

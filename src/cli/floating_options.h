@@ -25,7 +25,13 @@ struct FloatingArgs {
   std::optional<double> pivot_x;      // m; default: the middle of the hull's length
   double trim_deg = 0;                // bow down positive
   double heel_deg = 0;                // starboard down positive
-  bool given() const { return draft || waterline_z || trim_deg != 0 || heel_deg != 0; }
+  // "TA,TF": the drafts at the aft and forward perpendiculars, m above the baseline (instead of
+  // --draft, --trim and --pivot-x); "XA,XF": where the perpendiculars are (default: the hull's
+  // aft and forward ends).
+  std::string drafts, perpendiculars;
+  bool given() const {
+    return draft || waterline_z || trim_deg != 0 || heel_deg != 0 || !drafts.empty();
+  }
 };
 
 void add_floating_options(CLI::App* cmd, FloatingArgs& args);

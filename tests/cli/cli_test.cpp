@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -646,6 +648,45 @@ TEST(CliStructured, BadBlockFileAndSizeAreRefusedBeforeMeshing) {
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("--size 1,0,1: every size must be > 0 m"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// Drafts at the perpendiculars are the draft at their middle and the trim between them: both
+// meshers give the same bytes either way.
+TEST(CliFloating, DraftsAtThePerpendicularsAreADraftAndATrim) {
+  const fs::path dir = test::scratch_dir("cli_drafts");
+  const std::string igs = "'" + (dir / "w.igs").string() + "'";
+  ASSERT_EQ(run_hullmesh("-q generate wigley --length 100 --beam 10 --depth 8 --draft 6.25 "
+                         "--patches 2 -o " +
+                         igs)
+                .exit_code,
+            0);
+  char trim[64];
+  std::snprintf(trim, sizeof trim, "%.17g", std::atan(2.0 / 80.0) * 180 / std::numbers::pi);
+  for (const char* mesher : {"structured", "unstructured"}) {
+    const std::string a = (dir / (std::string(mesher) + "_a.gdf")).string();
+    const std::string b = (dir / (std::string(mesher) + "_b.gdf")).string();
+    const auto ra = run_hullmesh(std::string("-q ") + mesher + " " + igs + " -o '" + a +
+                                 "' --panels 300 --drafts 5,7 --perpendiculars 10,90");
+    ASSERT_EQ(ra.exit_code, 0) << ra.out;
+    const auto rb = run_hullmesh(std::string("-q ") + mesher + " " + igs + " -o '" + b +
+                                 "' --panels 300 --draft 6 --trim " + trim + " --pivot-x 50");
+    ASSERT_EQ(rb.exit_code, 0) << rb.out;
+    std::stringstream sa, sb;
+    sa << std::ifstream(a).rdbuf();
+    sb << std::ifstream(b).rdbuf();
+    EXPECT_GT(sa.str().size(), 1000u);
+    EXPECT_EQ(sa.str(), sb.str()) << mesher;
+  }
+  const auto one = run_hullmesh("structured " + igs + " -o x.gdf --drafts 5");
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_NE(one.out.find("--drafts 5: expected 2 comma-separated numbers"), std::string::npos)
+      << one.out;
+  const auto both = run_hullmesh("structured " + igs + " -o x.gdf --drafts 5,7 --trim 1");
+  EXPECT_EQ(both.exit_code, 2);
+  const auto back =
+      run_hullmesh("structured " + igs + " -o x.gdf --drafts 5,7 --perpendiculars 9,1");
+  EXPECT_EQ(back.exit_code, 2);
+  EXPECT_NE(back.out.find("XF > XA"), std::string::npos) << back.out;
 }
 
 }  // namespace
