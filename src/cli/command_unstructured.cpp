@@ -84,6 +84,9 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   pa.file = c.file;
   pa.units = c.units;
   pa.floating = c.floating;
+  if (c.floating.heel_deg != 0 && c.symmetry == "half") {
+    throw UsageError("--symmetry half with --heel: a heeled hull is not symmetric about y = 0");
+  }
   pa.cut_centre_plane = c.symmetry == "half";
   pa.tessellate = c.tessellate;
   pa.merge = c.merge;

@@ -7,6 +7,7 @@
 #include "core/bbox.h"
 #include "core/error.h"
 #include "mesh/mirror_mesh.h"
+#include "nurbs/knot_ops.h"
 #include "quality/hydrostatics.h"
 
 namespace hm::cli {
@@ -16,6 +17,50 @@ double hull_length(const SurfaceMesh& m) {
   for (const Vec3d& p : m.positions) box.add(p);
   const Vec3d e = box.extent();
   return std::max({e.x, e.y, e.z});
+}
+
+namespace {
+
+// A trim curve in (u, v) under u -> u0 + u1 - u, run backwards (so a loop of such curves keeps
+// its sense of rotation in the reflected domain).
+NurbsCurve reflected_in_u(const NurbsCurve& c, double u0, double u1) {
+  NurbsCurve r = c;
+  const std::size_t n = c.points.size(), m = c.knots.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    r.points[i] = c.points[n - 1 - i];
+    r.points[i].x = u0 + u1 - r.points[i].x;
+    if (c.weights.size() == n) r.weights[i] = c.weights[n - 1 - i];
+  }
+  for (std::size_t k = 0; k < m; ++k) {
+    const double t = c.knots[m - 1 - k];
+    r.knots[k] = t == c.t0 ? c.t1 : (t == c.t1 ? c.t0 : c.t0 + (c.t1 - t));
+  }
+  return r;
+}
+
+}  // namespace
+
+void add_mirror_image(ImportResult& hull) {
+  const std::size_t n = hull.patches.size();
+  hull.patches.reserve(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Patch image = hull.patches[i];
+    for (Vec3d& c : image.surface.points) c.y = -c.y;
+    // A reflection turns su x sv inside out: u runs backwards in the image, as the generator's
+    // starboard side does (flagging the patch reversed instead leaves the merge non-manifold at
+    // the keel of a mirrored Wigley). Its trim loops follow u, each loop still running the same
+    // way round.
+    const double u0 = image.surface.u0, u1 = image.surface.u1;
+    image.surface = reverse_u(image.surface);
+    for (TrimLoop& loop : image.loops) {
+      std::reverse(loop.curves_uv.begin(), loop.curves_uv.end());
+      for (NurbsCurve& c : loop.curves_uv) c = reflected_in_u(c, u0, u1);
+    }
+    if (!image.name.empty()) image.name += " (mirror)";
+    hull.patches.push_back(std::move(image));
+  }
+  hull.bbox.add(Vec3d{hull.bbox.lo.x, -hull.bbox.hi.y, hull.bbox.lo.z});
+  hull.bbox.add(Vec3d{hull.bbox.hi.x, -hull.bbox.lo.y, hull.bbox.hi.z});
 }
 
 HydrostaticsPair compare_hydrostatics(const PreparedHull& hull, const SurfaceMesh& panels,
@@ -57,14 +102,19 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   // Floating: the patches are placed first, so that everything below works in the floating frame
   // and the waterplane z = 0 cuts the merged fine mesh before it is meshed.
   if (args.floating.given()) {
-    // A heeled hull has no y = 0 symmetry, so a half hull cannot stand for it.
+    // A heeled hull has no y = 0 symmetry, so a half hull cannot stand for it: its mirror image
+    // joins it first, and the whole hull is meshed.
     const Vec3d e = out.hull.bbox.extent();
     const double tol = 2e-4 * std::max({e.x, e.y, e.z});
     if (args.floating.heel_deg != 0 && (out.hull.bbox.lo.y >= -tol || out.hull.bbox.hi.y <= tol)) {
-      throw UsageError(args.file +
-                       " is a half hull, and a heeled hull is not symmetric about y = 0: give "
-                       "the full hull to mesh it heeled (hullmesh does not yet mirror a half "
-                       "hull before meshing)");
+      add_mirror_image(out.hull);
+      out.mirrored_before_meshing = true;
+      if (!args.quiet) {
+        std::fprintf(stderr,
+                     "hullmesh: note: %s is a half hull; heeled, it is mirrored about y = 0 "
+                     "first and meshed whole (%zu patches)\n",
+                     args.file.c_str(), out.hull.patches.size());
+      }
     }
     try {
       out.floating = resolve_floating(args.floating, out.hull.patches, out.hull.bbox);

@@ -44,10 +44,11 @@ struct PreparedHull {
   Tessellation tessellation;
   MergedSurface merged;
   std::optional<PlaneCut> waterplane_cut, centre_cut;
-  bool file_half = false;   // the file holds one side of the centre plane
-  double centre_tol = 0;    // m: 2e-4 of the merged hull's largest extent
-  EdgeAdjacency adjacency;  // of fine()
-  FeatureSet features;      // of fine()
+  bool file_half = false;                // the file holds one side of the centre plane
+  bool mirrored_before_meshing = false;  // a heeled half hull, made whole
+  double centre_tol = 0;                 // m: 2e-4 of the merged hull's largest extent
+  EdgeAdjacency adjacency;               // of fine()
+  FeatureSet features;                   // of fine()
   double seconds_import = 0, seconds_features = 0;
   std::size_t retried_triangles = 0;  // the fine triangle count of the last retry, 0 when none
 
@@ -64,9 +65,9 @@ struct PreparedHull {
   }
 };
 
-// Fills `out`. Throws UsageError for a heeled half hull (it has no y = 0 symmetry), and whatever
-// import, merge and the cuts throw; GeometryError (exit 5) when the merged surface is not
-// edge-manifold, naming where.
+// Fills `out`. A heeled half hull (it has no y = 0 symmetry) is made whole by its mirror image
+// first. Throws whatever import, merge and the cuts throw; GeometryError (exit 5) when the merged
+// surface is not edge-manifold, naming where.
 void prepare_hull(const PrepareArgs& args, PreparedHull& out);
 
 // The panels' hydrostatics at the waterplane z = 0 of the floating frame, and the same
@@ -79,6 +80,10 @@ HydrostaticsPair compare_hydrostatics(const PreparedHull& hull, const SurfaceMes
 
 // One line: volume, wetted and waterplane area, LCB of the panels against the NURBS.
 void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs);
+
+// Appends each patch's mirror image about y = 0 (u reversed, so normals still point out of the
+// ship) and grows the bounding box to match.
+void add_mirror_image(ImportResult& hull);
 
 // Largest extent of the mesh's bounding box, m.
 double hull_length(const SurfaceMesh& m);
