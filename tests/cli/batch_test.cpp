@@ -36,7 +36,9 @@ void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) <
 // Rows of a summary by id, without the columns that may differ between two runs of one sweep.
 std::map<std::string, json> comparable_rows(const fs::path& summary) {
   std::map<std::string, json> rows;
-  for (json row : read_json(summary)["rows"]) {
+  // Named: a range-for over read_json(...)["rows"] would walk a destroyed temporary.
+  const json s = read_json(summary);
+  for (json row : s["rows"]) {
     row.erase("seconds");
     row.erase("reused");
     rows[row["id"]] = row;
