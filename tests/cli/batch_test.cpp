@@ -46,6 +46,16 @@ std::map<std::string, json> comparable_rows(const fs::path& summary) {
   return rows;
 }
 
+// Finished jobs' records: NAME.run.json, not a temporary ".NAME.run.json.tmp.PID.N" being written.
+std::size_t count_records(const fs::path& dir) {
+  std::size_t n = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    n += name[0] != '.' && name.size() > 9 && name.substr(name.size() - 9) == ".run.json" ? 1 : 0;
+  }
+  return n;
+}
+
 std::size_t count_files(const fs::path& dir, const std::string& part) {
   std::size_t n = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
@@ -304,7 +314,7 @@ void interrupt_and_resume(int signal_number, const std::string& name) {
   // Strike once the first job has finished and others are under way.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (std::chrono::steady_clock::now() < deadline &&
-         (!fs::exists(out) || count_files(out, ".run.json") < 1)) {
+         (!fs::exists(out) || count_records(out) < 1)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   ASSERT_EQ(kill(pid, signal_number), 0);
@@ -322,7 +332,7 @@ void interrupt_and_resume(int signal_number, const std::string& name) {
   } else {
     ASSERT_TRUE(WIFSIGNALED(status));
   }
-  const std::size_t done_before = count_files(out, ".run.json");
+  const std::size_t done_before = count_records(out);
   ASSERT_LT(done_before, 16u) << "the batch finished before the signal; nothing was tested";
 
   const auto resumed = run_hullmesh("-q " + cmd);
