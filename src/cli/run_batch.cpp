@@ -236,7 +236,8 @@ ordered_json run_job(const Manifest& m, const BatchJob& job, const std::string& 
   ExecuteOptions eo;
   eo.force_quiet = true;
   eo.write_record = false;
-  std::vector<std::string> words = job_words(m, job);
+  // The words the spec already holds (job_spec built them), so a job is expanded once.
+  std::vector<std::string> words = spec["words"].get<std::vector<std::string>>();
   const std::string first = output_path(out_dir, job, job.formats.front());
   words.insert(words.end(), {"-o", first});
   ExecuteResult r = execute_args(words, job.id, eo);
