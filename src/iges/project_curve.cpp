@@ -29,6 +29,7 @@ std::vector<double> breaks(const NurbsCurve& c) {
 struct Sample {
   double t;
   Vec3d uv;
+  double distance;  // from the curve point to its projection (model units)
 };
 
 }  // namespace
@@ -56,31 +57,38 @@ NurbsCurve project_to_uv(const NurbsSurface& s, const NurbsCurve& c, double tol,
   ts.push_back(c.t1);
   double u = 0, v = 0;
   bool have = false;
+  SurfaceProjector projector(s);
+  // Local Newton from the previous sample; a global search where that fails or lands far from
+  // the curve. A curve that lies off its surface (a broken file) keeps its offset from sample to
+  // sample, so "far" is measured beyond the previous sample's own distance.
+  double last_distance = 0;
   auto project = [&](double t) {
     if (budget > 0) --budget;
     const Vec3d q = evaluate(c, t);
-    SurfaceProjection pr = have ? closest_point(s, q, u, v) : closest_point(s, q);
-    if (have && (!pr.converged || pr.distance > 10 * tol)) {
-      const SurfaceProjection g = closest_point(s, q);
+    SurfaceProjection pr = have ? projector.project(q, u, v) : projector.project(q);
+    if (have && (!pr.converged || pr.distance > 10 * tol + 2 * last_distance)) {
+      const SurfaceProjection g = projector.project(q);
       if (g.distance < pr.distance) pr = g;
     }
     u = pr.u;
     v = pr.v;
     have = true;
+    last_distance = pr.distance;
     max_distance = std::max(max_distance, pr.distance);
-    return Vec3d{pr.u, pr.v, 0};
+    return Sample{t, Vec3d{pr.u, pr.v, 0}, pr.distance};
   };
   std::vector<Sample> pts;
   pts.reserve(ts.size());
   for (double t : ts) {
     if (budget == 0) break;
-    pts.push_back({t, project(t)});
+    pts.push_back(project(t));
   }
   if (pts.size() < 2) {
     budget = 0;
-    pts.assign(2, Sample{c.t0, Vec3d{}});
+    pts.assign(2, Sample{c.t0, Vec3d{}, 0});
   }
-  // Refine each segment where the straight (u, v) segment leaves the curve.
+  // Refine each segment where the straight (u, v) segment leaves the curve by more than the
+  // curve's own offset from the surface at the segment's ends.
   std::vector<Sample> out{pts.front()};
   for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
     std::vector<std::pair<Sample, int>> stack{{pts[i + 1], 0}};
@@ -90,11 +98,13 @@ NurbsCurve project_to_uv(const NurbsSurface& s, const NurbsCurve& c, double tol,
       const double tm = 0.5 * (a.t + bs.t);
       const Vec3d mid_uv = 0.5 * (a.uv + bs.uv);
       const Vec3d on_curve = evaluate(c, tm);
-      const double dev = norm(evaluate(s, mid_uv.x, mid_uv.y) - on_curve);
+      const double dev =
+          norm(evaluate(s, mid_uv.x, mid_uv.y) - on_curve) - std::max(a.distance, bs.distance);
       if (depth < 8 && budget > 0 && out.size() + stack.size() < kMaxSamples && dev > tol) {
         u = a.uv.x;
         v = a.uv.y;
-        stack.push_back({{tm, project(tm)}, depth + 1});
+        last_distance = a.distance;
+        stack.push_back({project(tm), depth + 1});
         continue;
       }
       out.push_back(bs);

@@ -163,46 +163,53 @@ std::vector<double> grid_params(const std::vector<double>& breaks) {
   return ts;
 }
 
-// Grid points that are local minima of the distance (8-neighbourhood), best first.
-std::vector<Point2> grid_starts(const NurbsSurface& s, const kernel::SurfaceArrays& a,
-                                const Vec3d& q) {
-  const std::vector<double> us = grid_params(span_breaks_u(s));
-  const std::vector<double> vs = grid_params(span_breaks_v(s));
-  kernel::BasisTable bu, bv;
-  kernel::basis_table(s.degree_u, s.count_u, s.knots_u, us, 0, bu);
-  kernel::basis_table(s.degree_v, s.count_v, s.knots_v, vs, 0, bv);
-  std::vector<Vec3d> pos(us.size() * vs.size());
-  kernel::surface_grid_rows(a, us, vs, bu, bv, 0, vs.size(), pos, {});
-  const int nu = static_cast<int>(us.size());
-  const int nv = static_cast<int>(vs.size());
-  std::vector<double> dist(pos.size());
-  for (std::size_t k = 0; k < pos.size(); ++k) dist[k] = squared_norm(pos[k] - q);
-  std::vector<std::pair<double, int>> minima;
-  for (int j = 0; j < nv; ++j) {
-    for (int i = 0; i < nu; ++i) {
-      const double dk = dist[i + nu * j];
-      bool is_min = true;
-      for (int dj = -1; dj <= 1 && is_min; ++dj) {
-        for (int di = -1; di <= 1; ++di) {
-          const int ii = i + di;
-          const int jj = j + dj;
-          if ((di || dj) && ii >= 0 && ii < nu && jj >= 0 && jj < nv && dist[ii + nu * jj] < dk) {
-            is_min = false;
-            break;
+// A coarse grid of surface points over the knot spans: the starting points of a global search.
+struct StartGrid {
+  std::vector<double> us, vs;
+  std::vector<Vec3d> pos;  // us.size() x vs.size(), u fastest
+
+  StartGrid(const NurbsSurface& s, const kernel::SurfaceArrays& a)
+      : us(grid_params(span_breaks_u(s))), vs(grid_params(span_breaks_v(s))) {
+    kernel::BasisTable bu, bv;
+    kernel::basis_table(s.degree_u, s.count_u, s.knots_u, us, 0, bu);
+    kernel::basis_table(s.degree_v, s.count_v, s.knots_v, vs, 0, bv);
+    pos.resize(us.size() * vs.size());
+    kernel::surface_grid_rows(a, us, vs, bu, bv, 0, vs.size(), pos, {});
+  }
+
+  // Grid points that are local minima of the distance to q (8-neighbourhood), best first.
+  std::vector<Point2> starts(const Vec3d& q) const {
+    const int nu = static_cast<int>(us.size());
+    const int nv = static_cast<int>(vs.size());
+    std::vector<double> dist(pos.size());
+    for (std::size_t k = 0; k < pos.size(); ++k) dist[k] = squared_norm(pos[k] - q);
+    std::vector<std::pair<double, int>> minima;
+    for (int j = 0; j < nv; ++j) {
+      for (int i = 0; i < nu; ++i) {
+        const double dk = dist[i + nu * j];
+        bool is_min = true;
+        for (int dj = -1; dj <= 1 && is_min; ++dj) {
+          for (int di = -1; di <= 1; ++di) {
+            const int ii = i + di;
+            const int jj = j + dj;
+            if ((di || dj) && ii >= 0 && ii < nu && jj >= 0 && jj < nv && dist[ii + nu * jj] < dk) {
+              is_min = false;
+              break;
+            }
           }
         }
+        if (is_min) minima.push_back({dk, i + nu * j});
       }
-      if (is_min) minima.push_back({dk, i + nu * j});
     }
+    std::sort(minima.begin(), minima.end());
+    std::vector<Point2> out;
+    for (std::size_t k = 0; k < minima.size() && k < kStarts; ++k) {
+      const int idx = minima[k].second;
+      out.push_back({us[idx % nu], vs[idx / nu]});
+    }
+    return out;
   }
-  std::sort(minima.begin(), minima.end());
-  std::vector<Point2> starts;
-  for (std::size_t k = 0; k < minima.size() && k < kStarts; ++k) {
-    const int idx = minima[k].second;
-    starts.push_back({us[idx % nu], vs[idx / nu]});
-  }
-  return starts;
-}
+};
 
 bool better(const SurfaceProjection& a, const SurfaceProjection& b) {
   if (a.distance != b.distance) return a.distance < b.distance;
@@ -211,23 +218,45 @@ bool better(const SurfaceProjection& a, const SurfaceProjection& b) {
 
 }  // namespace
 
-SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q) {
-  const Solver solver{s, surface_arrays(s), q, net_size(s)};
+struct SurfaceProjector::State {
+  const NurbsSurface& s;
+  kernel::SurfaceArrays a;
+  double scale;
+  std::unique_ptr<StartGrid> grid;  // built at the first global search
+};
+
+SurfaceProjector::SurfaceProjector(const NurbsSurface& s)
+    : state_(new State{s, surface_arrays(s), net_size(s), nullptr}) {}
+
+SurfaceProjector::~SurfaceProjector() = default;
+
+SurfaceProjection SurfaceProjector::project(const Vec3d& q) {
+  State& st = *state_;
+  if (!st.grid) st.grid = std::make_unique<StartGrid>(st.s, st.a);
+  const Solver solver{st.s, st.a, q, st.scale};
   SurfaceProjection best;
   bool have = false;
-  for (const Point2& p : grid_starts(s, solver.a, q)) {
+  for (const Point2& p : st.grid->starts(q)) {
     const SurfaceProjection r = solver.newton(p.u, p.v);
     if (!have || better(r, best)) best = r;
     have = true;
   }
-  if (!have) best = solver.newton(0.5 * (s.u0 + s.u1), 0.5 * (s.v0 + s.v1));
+  if (!have) best = solver.newton(0.5 * (st.s.u0 + st.s.u1), 0.5 * (st.s.v0 + st.s.v1));
   return best;
+}
+
+SurfaceProjection SurfaceProjector::project(const Vec3d& q, double u_start, double v_start) {
+  const Solver solver{state_->s, state_->a, q, state_->scale};
+  return solver.newton(u_start, v_start);
+}
+
+SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q) {
+  return SurfaceProjector(s).project(q);
 }
 
 SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
                                 double v_start) {
-  const Solver solver{s, surface_arrays(s), q, net_size(s)};
-  return solver.newton(u_start, v_start);
+  return SurfaceProjector(s).project(q, u_start, v_start);
 }
 
 }  // namespace hm

@@ -3,6 +3,7 @@
 // with every 124 transform already applied.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/vec.h"
@@ -69,6 +70,25 @@ SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q);
 // Newton from a given start, for callers that already know a good (u, v).
 SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
                                 double v_start);
+
+// Many projections onto one surface (a trim curve's samples): the evaluation arrays are built
+// once, and the coarse start grid once, at the first global search, instead of per query. Gives
+// the same answers as closest_point. The surface must outlive the projector. Not thread-safe:
+// one projector per thread.
+class SurfaceProjector {
+ public:
+  explicit SurfaceProjector(const NurbsSurface& s);
+  ~SurfaceProjector();
+  SurfaceProjector(const SurfaceProjector&) = delete;
+  SurfaceProjector& operator=(const SurfaceProjector&) = delete;
+
+  SurfaceProjection project(const Vec3d& q);
+  SurfaceProjection project(const Vec3d& q, double u_start, double v_start);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // Distinct knot values inside the domain in each direction (span boundaries), u0 and u1 included.
 std::vector<double> span_breaks_u(const NurbsSurface& s);
