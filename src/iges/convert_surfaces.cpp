@@ -105,7 +105,7 @@ NurbsSurface ruled_118(const Context& ctx, const Params& p, Diagnostics& notes) 
   }
   if (p.integer(3) == 1) reverse_curve(b);
   if (!make_compatible(a, b, ctx.options.limits.max_control_points)) {
-    p.fault("rail curves too large to make compatible");
+    p.fault("rail curves cannot be made compatible (too many control points)");
   }
   const bool straight = a.degree == 1 && a.count() == 2;
   if (p.entry().form == 0 && !straight) {

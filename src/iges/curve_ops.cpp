@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/error.h"
+
 namespace hm::iges {
 namespace {
 
@@ -65,8 +67,10 @@ void reverse_curve(NurbsCurve& c) {
 
 void reparametrize(NurbsCurve& c, double a, double b) {
   const double s = (b - a) / (c.t1 - c.t0);
-  const double t0 = c.t0;
-  for (double& k : c.knots) k = a + (k - t0) * s;
+  const double t0 = c.t0, t1 = c.t1;
+  // The end of the range maps to b exactly: two curves put on the same range must share their
+  // end knots bit for bit (make_compatible matches knots by value).
+  for (double& k : c.knots) k = k == t1 ? b : a + (k - t0) * s;
   c.t0 = a;
   c.t1 = b;
 }
@@ -81,6 +85,12 @@ int find_span(const std::vector<double>& U, int p, int n, double u) {
 
 void refine_knots(NurbsCurve& c, const std::vector<double>& x) {
   if (x.empty()) return;
+  // A5.4 writes out of bounds for knots outside the domain or out of order: refuse them.
+  if (c.degree < 1 || c.knots.size() != c.points.size() + c.degree + 1 ||
+      !std::is_sorted(x.begin(), x.end()) || !(x.front() >= c.knots[c.degree]) ||
+      !(x.back() <= c.knots[c.points.size()])) {
+    throw GeometryError("knot insertion outside the curve's domain");
+  }
   // Knot refinement in one pass (Piegl & Tiller, The NURBS Book, A5.4): O((n + r) p).
   const int p = c.degree;
   const int n = c.count();  // control points
@@ -196,15 +206,22 @@ bool elevate_degree(NurbsCurve& c, int target, std::uint64_t max_points) {
 bool make_compatible(NurbsCurve& a, NurbsCurve& b, std::uint64_t max_points) {
   const int p = std::max(a.degree, b.degree);
   if (!elevate_degree(a, p, max_points) || !elevate_degree(b, p, max_points)) return false;
-  // Union of knot vectors with the larger multiplicity of each value.
-  auto missing = [](const std::vector<double>& from, const std::vector<double>& into) {
+  // Union of the interior knots with the larger multiplicity of each value (at most p, so the
+  // curve stays continuous). End knots are left alone: both curves are clamped on the same
+  // range, and a value a rounding error away from an end must not be inserted as a new knot.
+  auto missing = [p](const std::vector<double>& from, const std::vector<double>& into) {
     std::vector<double> out;
+    const double lo = into[static_cast<std::size_t>(p)];
+    const double hi = into[into.size() - 1 - static_cast<std::size_t>(p)];
     std::size_t i = 0;
     while (i < from.size()) {
       std::size_t j = i;
       while (j < from.size() && from[j] == from[i]) ++j;
-      const int need = static_cast<int>(j - i) - multiplicity(into, from[i]);
-      for (int k = 0; k < need; ++k) out.push_back(from[i]);
+      if (from[i] > lo && from[i] < hi) {
+        const int want = std::min(static_cast<int>(j - i), p);
+        const int need = want - multiplicity(into, from[i]);
+        for (int k = 0; k < need; ++k) out.push_back(from[i]);
+      }
       i = j;
     }
     return out;
@@ -217,7 +234,7 @@ bool make_compatible(NurbsCurve& a, NurbsCurve& b, std::uint64_t max_points) {
   }
   refine_knots(a, add_to_a);
   refine_knots(b, add_to_b);
-  return true;
+  return a.count() == b.count() && a.knots.size() == b.knots.size();
 }
 
 bool join_chain(const std::vector<NurbsCurve>& chain, std::uint64_t max_points, NurbsCurve& out) {

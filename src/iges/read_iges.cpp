@@ -164,6 +164,11 @@ JobResult convert_job(const Context& ctx, int i, bool reversed) {
   } catch (const EntityFault& f) {
     add_fault(ctx, f, i, Severity::kError, r.diags);
     r.failed = true;
+  } catch (const GeometryError& g) {
+    // A geometric operation refused this entity's data (the operations check their own
+    // preconditions): the patch is skipped, the rest of the file still imports.
+    r.diags.add(Severity::kError, e.de, e.param_line, e.type, std::string(g.what()) + "; skipped");
+    r.failed = true;
   }
   return r;
 }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/error.h"
+
 namespace hm {
 namespace {
 
@@ -77,6 +79,45 @@ TEST(CurveOps, CompatibleCurvesShareDegreeAndKnots) {
   EXPECT_EQ(a.knots, b.knots);
   EXPECT_LT(max_difference(a0, a, 0, 1), 1e-12);
   EXPECT_LT(max_difference(b0, b, 0, 1), 1e-12);
+}
+
+// Two rails on ranges whose mapping to [0, 1] rounds ((1.7 - 0.1) / (1.7 - 0.1) is not 1): the end
+// knots must still match exactly, or the union of the knot vectors inserts a knot a rounding
+// error from the end, beyond the curve's domain (a heap overflow in knot refinement, found by
+// the fuzzer on a ruled surface).
+TEST(CurveOps, RailsOnRoundedRangesStillBecomeCompatible) {
+  NurbsCurve a = sample_curve();
+  for (double& k : a.knots) k = 0.1 + 1.6 * k;
+  a.t0 = 0.1;
+  a.t1 = 1.7;
+  a.knots.back() = a.knots[a.knots.size() - 2] = a.knots[a.knots.size() - 3] = 1.7;
+  NurbsCurve b;
+  b.degree = 2;
+  b.knots = {0.35, 0.35, 0.35, 0.41, 1.1, 1.1, 1.1};
+  b.points = {{0, 5, 0}, {2, 6, 0}, {4, 5, 1}, {6, 5, 0}};
+  b.weights = {1, 1, 1, 1};
+  b.t0 = 0.35;
+  b.t1 = 1.1;
+  const NurbsCurve a0 = a, b0 = b;
+  iges::reparametrize(a, 0, 1);
+  iges::reparametrize(b, 0, 1);
+  EXPECT_EQ(a.knots.back(), 1.0);
+  EXPECT_EQ(b.knots.back(), 1.0);
+  ASSERT_TRUE(iges::make_compatible(a, b, 1000));
+  EXPECT_EQ(a.knots, b.knots);
+  for (int k = 0; k <= 50; ++k) {
+    const double t = k / 50.0;
+    EXPECT_LT(norm(evaluate(a, t) - evaluate(a0, 0.1 + 1.6 * t)), 1e-12);
+    EXPECT_LT(norm(evaluate(b, t) - evaluate(b0, 0.35 + 0.75 * t)), 1e-12);
+  }
+}
+
+// Knot refinement checks its input instead of writing past its arrays.
+TEST(CurveOps, KnotsOutsideTheDomainAreRefused) {
+  NurbsCurve c = sample_curve();
+  EXPECT_THROW(iges::refine_knots(c, {1.5}), GeometryError);
+  EXPECT_THROW(iges::refine_knots(c, {0.6, 0.3}), GeometryError);
+  EXPECT_EQ(c.count(), 7);
 }
 
 TEST(CurveOps, JoinChainsPiecesEndToEnd) {
