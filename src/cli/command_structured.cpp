@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/floating_options.h"
+#include "cli/lid_output.h"
 #include "cli/load_hull.h"
 #include "cli/prepare_hull.h"
 #include "cli/run_record.h"
@@ -41,9 +42,14 @@ struct StructuredCommand {
   FeatureOptions features;
   FloatingArgs floating;
   std::string symmetry = "auto";
+  LidArgs lid;
 };
 
 int run_structured(StructuredCommand c, const GlobalOptions& g) {
+  if (c.lid.wanted() && !c.floating.given()) {
+    throw UsageError(
+        "--lid needs a waterplane: give --draft, --waterline-z, --drafts, --trim or --heel");
+  }
   check_mesh_output(c.output);
   if (!c.size.empty()) {
     const auto v = parse_numbers(c.size, 3, "--size");
@@ -123,11 +129,19 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   MeshWriteOptions w;
   w.info.title = "hullmesh structured panels of " + file_name(c.file);
   w.info.symmetry.about_y0 = quality.half_hull;
+  // The lid, from the finished wetted panels: its border is their waterline.
+  const std::optional<Lid> lid = build_lid(c.lid, *output, ph.floating.has_value());
   record.log.stage("write");
-  write_mesh(c.output, *output, w);
+  if (lid && c.lid.in_mesh) {
+    write_mesh(c.output, append_lid(*output, *lid), w);
+  } else {
+    write_mesh(c.output, *output, w);
+  }
+  const std::string lid_file = lid ? write_lid_file(c.lid, c.output, *lid, w) : std::string();
   record.log.finish();
   record.input = c.file;
   record.outputs = {c.output};
+  if (!lid_file.empty()) record.outputs.push_back(lid_file);
   record.quality = quality_summary(quality, qo.rules);
   record.results = {{"panel_size_m", {r.size.x, r.size.y, r.size.z}},
                     {"stations", r.stations},
@@ -135,6 +149,12 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                     {"deviation_max_m", dev.max},
                     {"deviation_mean_m", dev.mean}};
   if (hydro) record.results["hydrostatics"] = hydrostatics_summary(hydro->mesh, &hydro->nurbs);
+  if (lid) {
+    record.results["lid"] = {{"panels", lid->mesh.face_count()},
+                             {"area_m2", lid->report.area},
+                             {"edge_length_m", lid->report.edge_length},
+                             {"in_mesh", c.lid.in_mesh}};
+  }
 
   if (!g.quiet) {
     std::printf("%s: %zu panels (%zu quads, %zu triangles), %zu vertices\n", c.output.c_str(),
@@ -171,6 +191,11 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
     if (r.rows_unmatched > 0) {
       std::printf("  WARNING: %zu strips between rows could not be paired and are left open\n",
                   r.rows_unmatched);
+    }
+    if (lid) {
+      print_lid(*lid, lid_file.empty()
+                          ? "appended after the hull's panels in " + c.output
+                          : (c.lid.in_mesh ? "in " + c.output + " and " : "") + "in " + lid_file);
     }
     if (mirrored) {
       std::printf("  mirrored about y = 0: %zu panels in the full hull\n", output->face_count());
@@ -250,6 +275,7 @@ void register_structured(CLI::App& app, const GlobalOptions& global, Action& act
   cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
       ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));
   add_floating_options(cmd, c->floating);
+  add_lid_options(cmd, c->lid);
   cmd->add_option("--symmetry", c->symmetry,
                   "auto: as the file is (a full hull is meshed as its port half and mirrored; a "
                   "half hull gets its y = 0 flag); half: the port half only; full: mirror a half "
