@@ -378,7 +378,10 @@ class Triangulation {
   // Restores the Delaunay property around the new point p (in triangle t).
   void legalize(int t0, int p) {
     std::vector<int> stack{t0};
-    while (!stack.empty()) {
+    // Flips around one new point are few; the cap only guards against rounding making two
+    // flips undo each other forever (the lid is then a little less than Delaunay, not a hang).
+    std::size_t budget = 4 * t_.size() + 64;
+    while (!stack.empty() && budget-- > 0) {
       const int t = stack.back();
       stack.pop_back();
       const int k = index_of(t_[t], p);
