@@ -46,10 +46,7 @@ struct StructuredCommand {
 };
 
 int run_structured(StructuredCommand c, const GlobalOptions& g) {
-  if (c.lid.wanted() && !c.floating.given()) {
-    throw UsageError(
-        "--lid needs a waterplane: give --draft, --waterline-z, --drafts, --trim or --heel");
-  }
+  check_lid_args(c.lid, c.floating.given());
   check_mesh_output(c.output);
   if (!c.size.empty()) {
     const auto v = parse_numbers(c.size, 3, "--size");
@@ -129,19 +126,12 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   MeshWriteOptions w;
   w.info.title = "hullmesh structured panels of " + file_name(c.file);
   w.info.symmetry.about_y0 = quality.half_hull;
-  // The lid, from the finished wetted panels: its border is their waterline.
-  const std::optional<Lid> lid = build_lid(c.lid, *output, ph.floating.has_value());
   record.log.stage("write");
-  if (lid && c.lid.in_mesh) {
-    write_mesh(c.output, append_lid(*output, *lid), w);
-  } else {
-    write_mesh(c.output, *output, w);
-  }
-  const std::string lid_file = lid ? write_lid_file(c.lid, c.output, *lid, w) : std::string();
+  // The lid, if asked for, from the finished wetted panels: its border is their waterline.
+  const LidOutput lid = write_hull_and_lid(c.lid, c.output, *output, w);
   record.log.finish();
   record.input = c.file;
   record.outputs = {c.output};
-  if (!lid_file.empty()) record.outputs.push_back(lid_file);
   record.quality = quality_summary(quality, qo.rules);
   record.results = {{"panel_size_m", {r.size.x, r.size.y, r.size.z}},
                     {"stations", r.stations},
@@ -149,12 +139,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                     {"deviation_max_m", dev.max},
                     {"deviation_mean_m", dev.mean}};
   if (hydro) record.results["hydrostatics"] = hydrostatics_summary(hydro->mesh, &hydro->nurbs);
-  if (lid) {
-    record.results["lid"] = {{"panels", lid->mesh.face_count()},
-                             {"area_m2", lid->report.area},
-                             {"edge_length_m", lid->report.edge_length},
-                             {"in_mesh", c.lid.in_mesh}};
-  }
+  record_lid(lid, c.lid, record);
 
   if (!g.quiet) {
     std::printf("%s: %zu panels (%zu quads, %zu triangles), %zu vertices\n", c.output.c_str(),
@@ -192,11 +177,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
       std::printf("  WARNING: %zu strips between rows could not be paired and are left open\n",
                   r.rows_unmatched);
     }
-    if (lid) {
-      print_lid(*lid, lid_file.empty()
-                          ? "appended after the hull's panels in " + c.output
-                          : (c.lid.in_mesh ? "in " + c.output + " and " : "") + "in " + lid_file);
-    }
+    print_lid(lid, c.lid, c.output);
     if (mirrored) {
       std::printf("  mirrored about y = 0: %zu panels in the full hull\n", output->face_count());
     }

@@ -78,10 +78,7 @@ void parse_sources(UnstructuredCommand& c) {
 }
 
 int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
-  if (c.lid.wanted() && !c.floating.given()) {
-    throw UsageError(
-        "--lid needs a waterplane: give --draft, --waterline-z, --drafts, --trim or --heel");
-  }
+  check_lid_args(c.lid, c.floating.given());
   parse_sources(c);
   check_mesh_output(c.output);
   // The fine mesh: sized from the panel target unless the user sized it (over the whole hull, so
@@ -167,40 +164,24 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   // A half hull goes out with its symmetry flag wherever the format has one (a panel code
   // would otherwise take it for half a ship).
   w.info.symmetry.about_y0 = quality.half_hull;
-  // The lid, from the finished wetted panels: its border is their waterline.
-  const std::optional<Lid> lid = build_lid(c.lid, *output, floating.has_value());
   record.log.stage("write");
-  if (lid && c.lid.in_mesh) {
-    write_mesh(c.output, append_lid(*output, *lid), w);
-  } else {
-    write_mesh(c.output, *output, w);
-  }
-  const std::string lid_file = lid ? write_lid_file(c.lid, c.output, *lid, w) : std::string();
+  // The lid, if asked for, from the finished wetted panels: its border is their waterline.
+  const LidOutput lid = write_hull_and_lid(c.lid, c.output, *output, w);
   record.log.finish();
   record.input = c.file;
   record.outputs = {c.output};
-  if (!lid_file.empty()) record.outputs.push_back(lid_file);
   record.quality = quality_summary(quality, qo.rules);
   record.results = {{"panel_size_m", r.panel_size},       {"collapses", r.collapses},
                     {"target_reached", r.target_reached}, {"quality_index_mean", r.mean_quality},
                     {"quality_index_min", r.min_quality}, {"deviation_max_m", dev.max},
                     {"deviation_mean_m", dev.mean}};
   if (hydro_mesh) record.results["hydrostatics"] = hydrostatics_summary(*hydro_mesh, &*hydro_nurbs);
-  if (lid) {
-    record.results["lid"] = {{"panels", lid->mesh.face_count()},
-                             {"area_m2", lid->report.area},
-                             {"edge_length_m", lid->report.edge_length},
-                             {"in_mesh", c.lid.in_mesh}};
-  }
+  record_lid(lid, c.lid, record);
 
   if (!g.quiet) {
     std::printf("%s: %zu panels, %zu vertices (from %zu fine triangles)\n", c.output.c_str(),
                 r.panels, r.vertices, r.input_faces);
-    if (lid) {
-      print_lid(*lid, lid_file.empty()
-                          ? "appended after the hull's panels in " + c.output
-                          : (c.lid.in_mesh ? "in " + c.output + " and " : "") + "in " + lid_file);
-    }
+    print_lid(lid, c.lid, c.output);
     if (mirrored) {
       std::printf("  mirrored about y = 0: %zu panels, %zu vertices in the full hull\n",
                   output->face_count(), output->vertex_count());

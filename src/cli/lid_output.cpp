@@ -1,5 +1,6 @@
 #include "cli/lid_output.h"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -15,6 +16,13 @@ void add_lid_options(CLI::App* cmd, LidArgs& args) {
                 "Append the lid's panels after the hull's in the output itself (WAMIT IRR = 1)");
 }
 
+void check_lid_args(const LidArgs& args, bool waterplane_given) {
+  if (args.wanted() && !waterplane_given) {
+    throw UsageError(
+        "--lid needs a waterplane: give --draft, --waterline-z, --drafts, --trim or --heel");
+  }
+}
+
 std::string lid_path(const std::string& output) {
   namespace fs = std::filesystem;
   const fs::path p(output);
@@ -24,37 +32,51 @@ std::string lid_path(const std::string& output) {
   return (p.parent_path() / (p.stem().string() + "_lid" + p.extension().string())).string();
 }
 
-std::optional<Lid> build_lid(const LidArgs& args, const SurfaceMesh& hull, bool floating) {
-  if (!args.wanted()) return std::nullopt;
-  if (!floating) {
-    throw UsageError(
-        "--lid needs a waterplane: give --draft, --waterline-z, --drafts, --trim or --heel");
+LidOutput write_hull_and_lid(const LidArgs& args, const std::string& output,
+                             const SurfaceMesh& hull, const MeshWriteOptions& options) {
+  LidOutput out;
+  if (!args.wanted()) {
+    write_mesh(output, hull, options);
+    return out;
   }
-  return make_lid(hull);
+  if (args.separate && std::filesystem::path(lid_path(output)) == std::filesystem::path(output)) {
+    throw UsageError("--lid: the output is already named " + output +
+                     ", the lid's file name; name the hull's file otherwise");
+  }
+  out.lid = make_lid(hull);
+  write_mesh(output, args.in_mesh ? append_lid(hull, *out.lid) : hull, options);
+  if (args.separate) {
+    out.file = lid_path(output);
+    MeshWriteOptions lid_options = options;
+    lid_options.info.waterplane_lid = true;
+    lid_options.info.title += " (lid)";
+    lid_options.face_fields.clear();
+    write_mesh(out.file, out.lid->mesh, lid_options);
+  }
+  return out;
 }
 
-std::string write_lid_file(const LidArgs& args, const std::string& output, const Lid& lid,
-                           MeshWriteOptions options) {
-  if (!args.separate) return {};
-  const std::string path = lid_path(output);
-  if (std::filesystem::path(path) == std::filesystem::path(output)) {
-    throw UsageError("--lid: the output is already named " + path +
-                     "; name the hull's file otherwise");
+void record_lid(const LidOutput& out, const LidArgs& args, RunRecord& record) {
+  if (!out.file.empty()) record.outputs.push_back(out.file);
+  if (out.lid) {
+    record.results["lid"] = {{"panels", out.lid->mesh.face_count()},
+                             {"area_m2", out.lid->report.area},
+                             {"edge_length_m", out.lid->report.edge_length},
+                             {"in_mesh", args.in_mesh}};
   }
-  options.info.waterplane_lid = true;
-  options.info.title += " (lid)";
-  options.face_fields.clear();
-  write_mesh(path, lid.mesh, options);
-  return path;
 }
 
-void print_lid(const Lid& lid, const std::string& where) {
-  const LidReport& r = lid.report;
+void print_lid(const LidOutput& out, const LidArgs& args, const std::string& output) {
+  if (!out.lid) return;
+  std::string where;
+  if (args.in_mesh) where = "appended after the hull's panels in " + output;
+  if (!out.file.empty()) where += (where.empty() ? "in " : ", and in ") + out.file;
+  const LidReport& r = out.lid->report;
   std::printf(
       "  lid: %zu triangles, %zu vertices (%zu on the waterline, %zu on y = 0), edge %.4g m, "
       "area %.6g m^2, normals up; %s\n",
-      lid.mesh.face_count(), lid.mesh.vertex_count(), r.waterline_vertices, r.centre_vertices,
-      r.edge_length, r.area, where.c_str());
+      out.lid->mesh.face_count(), out.lid->mesh.vertex_count(), r.waterline_vertices,
+      r.centre_vertices, r.edge_length, r.area, where.c_str());
 }
 
 }  // namespace hm::cli

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/run_record.h"
 #include "io/write_mesh.h"
 #include "mesh/make_lid.h"
 
@@ -19,20 +20,28 @@ struct LidArgs {
 
 void add_lid_options(CLI::App* cmd, LidArgs& args);
 
+// UsageError when a lid is asked for without a waterplane: checked before any meshing.
+void check_lid_args(const LidArgs& args, bool waterplane_given);
+
 // Where --lid writes: WaterplaneMesh.pnl beside a .pnl output (the name HAMS reads), else
 // NAME_lid.EXT beside NAME.EXT.
 std::string lid_path(const std::string& output);
 
-// The lid of the wetted mesh `hull`; throws UsageError when a lid is asked for without a
-// waterplane (floating false), and the GeometryError of make_lid when the hull cannot have one.
-std::optional<Lid> build_lid(const LidArgs& args, const SurfaceMesh& hull, bool floating);
+struct LidOutput {
+  std::optional<Lid> lid;  // empty when none was asked for
+  std::string file;        // the separate lid file, or empty
+};
 
-// Writes the separate lid file when asked for (same format options as the hull, with the
-// waterplane flag for .pnl), returning its path, or an empty string.
-std::string write_lid_file(const LidArgs& args, const std::string& output, const Lid& lid,
-                           MeshWriteOptions options);
+// Writes the hull's panels to `output` (with the lid's panels after them for --lid-in-mesh) and,
+// for --lid, the lid file beside it (same format options, with the waterplane flag for .pnl).
+// make_lid's GeometryError stops the command before anything is written.
+LidOutput write_hull_and_lid(const LidArgs& args, const std::string& output,
+                             const SurfaceMesh& hull, const MeshWriteOptions& options);
 
-// The one-line summary printed by the meshers.
-void print_lid(const Lid& lid, const std::string& where);
+// The lid file among the record's outputs, and results.lid (after the results are set).
+void record_lid(const LidOutput& out, const LidArgs& args, RunRecord& record);
+
+// The one-line summary the meshers print.
+void print_lid(const LidOutput& out, const LidArgs& args, const std::string& output);
 
 }  // namespace hm::cli
