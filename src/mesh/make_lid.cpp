@@ -85,7 +85,7 @@ std::vector<std::array<Index, 2>> waterline_edges(const SurfaceMesh& m, double p
 }
 
 Waterlines collect_waterlines(const SurfaceMesh& m, double plane_tol, double centre_tol,
-                              double spacing_hint) {
+                              double spacing) {
   const std::vector<std::array<Index, 2>> edges = waterline_edges(m, plane_tol);
   if (edges.empty()) {
     throw GeometryError(
@@ -147,9 +147,8 @@ Waterlines collect_waterlines(const SurfaceMesh& m, double plane_tol, double cen
       }
     }
     Loop l = to_loop(chain);
-    const double h = spacing_hint > 0 ? spacing_hint : 1.0;
     const double len = std::abs(s.x - e.x);
-    const int segments = std::max(1, static_cast<int>(std::lround(len / h)));
+    const int segments = std::max(1, static_cast<int>(std::lround(len / spacing)));
     for (int k = 1; k < segments; ++k) {
       const double t = static_cast<double>(k) / segments;
       l.pts.push_back({e.x + t * (s.x - e.x), 0.0});
@@ -472,14 +471,11 @@ Lid make_lid(const SurfaceMesh& hull, const LidOptions& o) {
   const double plane_tol = o.plane_tol > 0 ? o.plane_tol : 1e-9 * size;
   const double centre_tol = o.centre_tol > 0 ? o.centre_tol : 1e-6 * size;
 
-  // Collect: the closed waterlines.
-  Waterlines w = collect_waterlines(hull, plane_tol, centre_tol, o.edge_length);
   const double h = o.edge_length > 0 ? o.edge_length : panel_sized_edge(hull);
   if (!(h > 0)) throw GeometryError("lid: the hull's panels have no size");
-  if (o.edge_length <= 0 && w.half) {
-    // The centre-plane points were spaced before the median was known: space them again.
-    w = collect_waterlines(hull, plane_tol, centre_tol, h);
-  }
+
+  // Collect: the closed waterlines (a half hull's closed along y = 0 at spacing h).
+  const Waterlines w = collect_waterlines(hull, plane_tol, centre_tol, h);
   for (std::size_t i = 0; i < w.loops.size(); ++i) {
     for (std::size_t j = 0; j < w.loops.size(); ++j) {
       if (i != j && inside_polygon(w.loops[i].pts, w.loops[j].pts.front())) {
