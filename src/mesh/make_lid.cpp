@@ -15,6 +15,7 @@
 
 #include "core/bbox.h"
 #include "core/error.h"
+#include "mesh/adjacency.h"
 
 namespace hm {
 namespace {
@@ -58,28 +59,17 @@ struct Waterlines {
   bool half = false;
 };
 
-// Boundary edges of the hull (used by one face) with both ends on the plane, in the direction
-// their face runs them.
+// Boundary edges of the hull with both ends on the plane, in the direction their face runs them.
 std::vector<std::array<Index, 2>> waterline_edges(const SurfaceMesh& m, double plane_tol) {
-  std::vector<std::array<Index, 4>> edges;  // lo, hi, from, to
-  for (const Face& f : m.faces) {
-    const int n = corner_count(f);
-    for (int k = 0; k < n; ++k) {
-      const Index a = f[k], b = f[(k + 1) % n];
-      edges.push_back({std::min(a, b), std::max(a, b), a, b});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
   std::vector<std::array<Index, 2>> out;
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
-    const Index a = edges[i][2], b = edges[i][3];
-    if (j - i == 1 && std::abs(m.positions[a].z) <= plane_tol &&
-        std::abs(m.positions[b].z) <= plane_tol) {
+  for (Index e : adj.boundary_edges) {
+    const Index slot = adj.edges[e].first_slot;
+    const Face& f = m.faces[slot / 4];
+    const Index a = f[slot % 4], b = f[(slot % 4 + 1) % corner_count(f)];
+    if (std::abs(m.positions[a].z) <= plane_tol && std::abs(m.positions[b].z) <= plane_tol) {
       out.push_back({a, b});
     }
-    i = j;
   }
   return out;
 }

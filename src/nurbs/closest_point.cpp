@@ -256,7 +256,9 @@ SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q) {
 
 SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
                                 double v_start) {
-  return SurfaceProjector(s).project(q, u_start, v_start);
+  // Called per vertex in the hot loops (queries, panel improvement): no projector, no allocation.
+  const Solver solver{s, surface_arrays(s), q, net_size(s)};
+  return solver.newton(u_start, v_start);
 }
 
 }  // namespace hm
