@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <span>
+#include <vector>
 
 #include "core/parallel.h"
 #include "mesh/adjacency.h"
@@ -50,11 +52,12 @@ RowCurve make_curve(const SectionPolyline& pl, const Metric& metric) {
   return c;
 }
 
-// Rewrites the measure of points first..last (their metric lengths in c.s, from `base`) so that
-// each stretch counts at least one panel per kMaxTurnPerPanel of turning; returns the measure at
-// `last`.
-double grade_stretch(RowCurve& c, std::size_t first, std::size_t last, double base) {
-  const double g0 = c.s[first], total = c.s[last] - g0;
+// Rewrites the measure of points first..last (their metric lengths in metric_s, from `base`) so
+// that each stretch counts at least one panel per kMaxTurnPerPanel of turning; returns the measure
+// at `last`.
+double grade_stretch(RowCurve& c, std::span<const double> metric_s, std::size_t first,
+                     std::size_t last, double base) {
+  const double g0 = metric_s[first], total = metric_s[last] - g0;
   if (!(total > 0)) {
     for (std::size_t i = first; i <= last; ++i) c.s[i] = base;
     return base;
@@ -64,10 +67,10 @@ double grade_stretch(RowCurve& c, std::size_t first, std::size_t last, double ba
   const double step = total / static_cast<double>(kc);
   std::vector<Vec3d> q(kc + 1);
   for (std::size_t k = 0, i = first; k <= kc; ++k) {
-    const double t = std::min(g0 + step * static_cast<double>(k), c.s[last]);
-    while (i + 1 < last && c.s[i + 1] < t) ++i;
-    const double len = c.s[i + 1] - c.s[i];
-    const double f = len > 0 ? std::clamp((t - c.s[i]) / len, 0.0, 1.0) : 0.0;
+    const double t = std::min(g0 + step * static_cast<double>(k), metric_s[last]);
+    while (i + 1 < last && metric_s[i + 1] < t) ++i;
+    const double len = metric_s[i + 1] - metric_s[i];
+    const double f = len > 0 ? std::clamp((t - metric_s[i]) / len, 0.0, 1.0) : 0.0;
     q[k] = c.points[i] * (1 - f) + c.points[i + 1] * f;
   }
   std::vector<double> turn(kc + 1, 0);
@@ -104,7 +107,7 @@ double grade_stretch(RowCurve& c, std::size_t first, std::size_t last, double ba
   for (std::size_t k = 0; k < kc; ++k) measure[k + 1] = measure[k] + per_chord[k];
   std::vector<double> out(last - first + 1);
   for (std::size_t i = first; i <= last; ++i) {
-    const double kf = (c.s[i] - g0) / step;
+    const double kf = (metric_s[i] - g0) / step;
     const std::size_t k = std::min(static_cast<std::size_t>(std::max(kf, 0.0)), kc - 1);
     out[i - first] = measure[k] + (kf - static_cast<double>(k)) * (measure[k + 1] - measure[k]);
   }
@@ -116,9 +119,12 @@ double grade_stretch(RowCurve& c, std::size_t first, std::size_t last, double ba
 // turning (a tight bilge gets panels enough that neighbouring normals stay close), taken
 // stretch by stretch between breakpoints so that a knuckle's corner counts for nothing.
 void grade_by_turning(RowCurve& c) {
+  // Each stretch reads the metric lengths: the one before it has already rewritten their shared
+  // point, and reading that graded value shrank (or emptied) every stretch after the first.
+  const std::vector<double> metric_s = c.s;
   double base = 0;
   for (std::size_t b = 0; b + 1 < c.breaks.size(); ++b) {
-    base = grade_stretch(c, c.breaks[b].point, c.breaks[b + 1].point, base);
+    base = grade_stretch(c, metric_s, c.breaks[b].point, c.breaks[b + 1].point, base);
   }
   for (Breakpoint& b : c.breaks) b.s = c.s[b.point];
 }
@@ -233,6 +239,9 @@ void add_plane_breaks(RowCurve& c, std::span<const BlockPlane> planes) {
       const double t = c.s[k] + da / (da - db) * (c.s[k + 1] - c.s[k]);
       if (near_break(c, t)) continue;
       const Index at = insert_point(c, t);
+      // On the plane exactly (the interpolated point is off it by rounding): a waterline node
+      // then has z = 0 to the bit, as the hydrostatics and the panel codes take it.
+      c.points[at] = c.points[at] - dot(n, c.points[at] - planes[p].point) * n;
       c.breaks.push_back({t, at, {BreakKind::kPlane, static_cast<Index>(p)}});
       ++k;  // past the inserted point
     }
@@ -307,8 +316,11 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       const Index last = static_cast<Index>(c.points.size() - 1);
       c.breaks.push_back({0, 0, {BreakKind::kLow, 0}});
       c.breaks.push_back({c.s.back(), last, {BreakKind::kHigh, 0}});
-      add_knuckle_breaks(c, row.x, surface, features, group, tol);
+      // Planes first: a plane's break is its exact crossing, a knuckle's is the nearest curve
+      // point, so a knuckle on a plane (the waterline of a hull meshed above it) takes the
+      // plane's.
       add_plane_breaks(c, planes);
+      add_knuckle_breaks(c, row.x, surface, features, group, tol);
       std::sort(c.breaks.begin(), c.breaks.end(),
                 [](const Breakpoint& a, const Breakpoint& b) { return a.s < b.s; });
       grade_by_turning(c);
