@@ -84,6 +84,11 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   PreparedHull ph;
   prepare_hull(pa, ph);
   const SurfaceMesh& fine = ph.fine();
+  // Meshed above the waterline too: the waterplane is a lateral block plane, so every row has a
+  // node on it and the blocks below and above meet on the waterline.
+  if (ph.floating && ph.floating->top_cut) {
+    c.structured.planes.push_back({Vec3d{0, 0, 0}, Vec3d{0, 0, 1}, "waterline"});
+  }
   record.log.stage("query");
   const long long t0 = now_ns();
   const HullQuery query(ph.patches(), fine);
@@ -209,6 +214,13 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         quality.topology.boundary_loops, quality.topology.nonmanifold_edges,
         quality.topology.free_edges_below,
         quality.topology.orientation_consistent ? "consistent" : "INCONSISTENT");
+    if (ph.floating && ph.floating->top_cut) {
+      std::printf(
+          "  above the waterline up to z = %.4g m: %zu panels end on the waterline from above, "
+          "%zu cross it\n",
+          ph.floating->above_waterline, above_waterline_panels(*output),
+          quality.topology.panels_across_waterline);
+    }
     std::printf(
         "  time: import %.3f s, tessellate %.3f s, merge %.3f s, features %.3f s, query %.3f s, "
         "structured %.3f s (plan %.3f, rows %.3f, grow and zip %.3f, relax %.3f), report "

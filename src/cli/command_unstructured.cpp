@@ -234,6 +234,13 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
           cr.unconverged);
       print_hydrostatics(*hydro_mesh, *hydro_nurbs);
       std::printf("  free edges below the waterline: %zu\n", quality.topology.free_edges_below);
+      if (floating->top_cut) {
+        std::printf(
+            "  above the waterline up to z = %.4g m: %zu panels end on the waterline from above, "
+            "%zu cross it\n",
+            floating->above_waterline, above_waterline_panels(*output),
+            quality.topology.panels_across_waterline);
+      }
     }
     std::printf("  topology: %zu boundary loops, %zu non-manifold edges, orientation %s\n",
                 quality.topology.boundary_loops, quality.topology.nonmanifold_edges,

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "cli/load_hull.h"
@@ -34,6 +35,9 @@ void add_floating_options(CLI::App* cmd, FloatingArgs& a) {
       ->excludes(wl)
       ->excludes(trim)
       ->excludes(pivot);
+  cmd->add_option("--above-waterline", a.above_waterline,
+                  "Also mesh the hull above the waterplane, up to this height above it, m (the "
+                  "waterline stays a line of panel edges; for codes that want the dry hull too)");
   cmd->add_option("--perpendiculars", a.perpendiculars,
                   "XA,XF: x of the aft and forward perpendiculars for --drafts, m (default: the "
                   "hull's aft and forward ends)");
@@ -73,6 +77,11 @@ Floating resolve_floating(const FloatingArgs& a, std::span<const Patch> patches,
   f.pivot_x = a.pivot_x.value_or(0.5 * (box.lo.x + box.hi.x));
   f.trim_deg = a.trim_deg;
   f.heel_deg = a.heel_deg;
+  if (!(a.above_waterline >= 0) || !std::isfinite(a.above_waterline)) {
+    throw UsageError("--above-waterline " + std::to_string(a.above_waterline) +
+                     ": the height above the waterplane must be a finite number >= 0 (m)");
+  }
+  f.above_waterline = a.above_waterline;
   if (!a.drafts.empty()) {
     drafts_at_perpendiculars(a, box, f.draft, f.trim_deg, f.pivot_x);
   } else {
@@ -116,6 +125,9 @@ Floating resolve_floating(const FloatingArgs& a, std::span<const Patch> patches,
                   f.draft, f.trim_deg, f.heel_deg);
     throw UsageError(text);
   }
+  // Cut even when the height looks above the top: the sample above is coarse, and a cut with
+  // nothing above it keeps every face.
+  f.top_cut = f.above_waterline > 0;
   return f;
 }
 

@@ -29,6 +29,9 @@ struct FloatingArgs {
   // --draft, --trim and --pivot-x); "XA,XF": where the perpendiculars are (default: the hull's
   // aft and forward ends).
   std::string drafts, perpendiculars;
+  // m: also mesh the hull above the waterplane, up to this height above it (0: the wetted part
+  // only). The waterline stays a line of panel edges.
+  double above_waterline = 0;
   bool given() const {
     return draft || waterline_z || trim_deg != 0 || heel_deg != 0 || !drafts.empty();
   }
@@ -39,11 +42,16 @@ void add_floating_options(CLI::App* cmd, FloatingArgs& args);
 struct Floating {
   FloatingTransform transform;  // file frame -> floating frame (free surface z = 0)
   double draft = 0, baseline_z = 0, pivot_x = 0, trim_deg = 0, heel_deg = 0;
+  // The surface above the waterplane is kept up to z = above_waterline (floating frame, m);
+  // top_cut: the hull is cut there (above_waterline > 0).
+  double above_waterline = 0;
+  bool top_cut = false;
 };
 
 // The placement for `args` of a hull whose surfaces span `box` (file frame, metres). Throws
 // UsageError when the waterplane would miss the placed hull: a draft at or above its highest point
-// (nothing left dry, no waterline) or a position that lifts it wholly out of the water.
+// (nothing left dry, no waterline) or a position that lifts it wholly out of the water, and for
+// a negative --above-waterline.
 Floating resolve_floating(const FloatingArgs& args, std::span<const Patch> patches,
                           const BBox3d& box);
 

@@ -19,6 +19,21 @@ double hull_length(const SurfaceMesh& m) {
   return std::max({e.x, e.y, e.z});
 }
 
+std::size_t above_waterline_panels(const SurfaceMesh& m) {
+  std::size_t n = 0;
+  for (const Face& f : m.faces) {
+    const int k = corner_count(f);
+    bool below = false, on_edge = false;
+    for (int c = 0; c < k; ++c) {
+      const double z0 = m.positions[f[c]].z, z1 = m.positions[f[(c + 1) % k]].z;
+      below |= z0 < 0;
+      on_edge |= z0 == 0 && z1 == 0;
+    }
+    n += !below && on_edge ? 1 : 0;
+  }
+  return n;
+}
+
 namespace {
 
 // A trim curve in (u, v) under u -> u0 + u1 - u, run backwards (so a loop of such curves keeps
@@ -99,6 +114,11 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   const long long t0 = now_ns();
   out.hull = load_hull(args.file, args.units, args.quiet);
   FeatureOptions features = args.features;
+  if (args.floating.above_waterline > 0 && !args.floating.given()) {
+    throw UsageError(
+        "--above-waterline needs a waterplane: give --draft, --waterline-z, --drafts, --trim or "
+        "--heel");
+  }
   // Floating: the patches are placed first, so that everything below works in the floating frame
   // and the waterplane z = 0 cuts the merged fine mesh before it is meshed.
   if (args.floating.given()) {
@@ -124,6 +144,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     }
     out.placed = transformed(out.hull.patches, out.floating->transform);
     features.waterline_z = 0;
+    features.waterline_inside = out.floating->top_cut;
   }
   out.seconds_import = seconds_since(t0);
   const std::span<const Patch> patches = out.patches();
@@ -145,9 +166,20 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     // hull is wanted.
     out.centre_tol = 2e-4 * hull_length(out.merged.mesh);
     out.file_half = is_half_hull(out.merged.mesh, out.centre_tol);
+    out.top_cut.reset();
     out.waterplane_cut.reset();
     out.centre_cut.reset();
-    if (out.floating) out.waterplane_cut = cut_at_plane(patches, out.fine(), {});
+    if (out.floating && out.floating->top_cut) {
+      PlaneCutOptions to;
+      to.value = out.floating->above_waterline;
+      out.top_cut = cut_at_plane(patches, out.fine(), to);
+    }
+    if (out.floating) {
+      // Meshed above the waterline too: the waterplane splits the surface and stays a line in it.
+      PlaneCutOptions wo;
+      wo.keep_both = out.floating->top_cut;
+      out.waterplane_cut = cut_at_plane(patches, out.fine(), wo);
+    }
     if (args.cut_centre_plane && !out.file_half) {
       PlaneCutOptions co;
       co.axis = 1;

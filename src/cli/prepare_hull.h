@@ -43,7 +43,9 @@ struct PreparedHull {
   std::vector<Patch> placed;  // the patches in the floating frame (empty when not afloat)
   Tessellation tessellation;
   MergedSurface merged;
-  std::optional<PlaneCut> waterplane_cut, centre_cut;
+  // In order: the top cut (--above-waterline), the waterplane (a split when the hull is meshed
+  // above it too), the centre plane.
+  std::optional<PlaneCut> top_cut, waterplane_cut, centre_cut;
   bool file_half = false;                // the file holds one side of the centre plane
   bool mirrored_before_meshing = false;  // a heeled half hull, made whole
   double centre_tol = 0;                 // m: 2e-4 of the merged hull's largest extent
@@ -61,7 +63,10 @@ struct PreparedHull {
   }
   // The surface the meshers work on: merged, then cut.
   const SurfaceMesh& fine() const {
-    return centre_cut ? centre_cut->mesh : waterplane_cut ? waterplane_cut->mesh : merged.mesh;
+    return centre_cut       ? centre_cut->mesh
+           : waterplane_cut ? waterplane_cut->mesh
+           : top_cut        ? top_cut->mesh
+                            : merged.mesh;
   }
 };
 
@@ -84,6 +89,9 @@ void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs);
 // Appends each patch's mirror image about y = 0 (u reversed, so normals still point out of the
 // ship) and grows the bounding box to match.
 void add_mirror_image(ImportResult& hull);
+
+// Panels above z = 0 with an edge on it (how many panels meet the waterline from above).
+std::size_t above_waterline_panels(const SurfaceMesh& m);
 
 // Largest extent of the mesh's bounding box, m.
 double hull_length(const SurfaceMesh& m);

@@ -1,7 +1,7 @@
-// The lid in four steps: collect the waterline (boundary edges on z = 0, chained in the faces'
-// direction; a half hull's open chain closed along y = 0), cut each closed waterline into
-// triangles by ear clipping, make them Delaunay by edge flips (the waterline edges fixed), then
-// insert the points of a hexagonal lattice of the target spacing, each followed by the flips
+// The lid in four steps: collect the waterline (edges on z = 0 bounding the wet faces, chained
+// in the faces' direction; a half hull's open chain closed along y = 0), cut each closed waterline
+// into triangles by ear clipping, make them Delaunay by edge flips (the waterline edges fixed),
+// then insert the points of a hexagonal lattice of the target spacing, each followed by the flips
 // that keep the triangulation Delaunay. The lattice gives near-equilateral triangles inside;
 // the flips grade them to the waterline's own spacing. Serial and in a fixed order: the same
 // lid on every run.
@@ -59,16 +59,32 @@ struct Waterlines {
   bool half = false;
 };
 
-// Boundary edges of the hull with both ends on the plane, in the direction their face runs them.
+// Edges of the hull with both ends on the plane, in the direction their wet face runs them: a
+// boundary edge's one face, or, where the hull goes on above the waterline, the one of an
+// interior edge's two faces that lies below the plane.
 std::vector<std::array<Index, 2>> waterline_edges(const SurfaceMesh& m, double plane_tol) {
   const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
-  std::vector<std::array<Index, 2>> out;
-  for (Index e : adj.boundary_edges) {
-    const Index slot = adj.edges[e].first_slot;
+  auto on_plane = [&](Index v) { return std::abs(m.positions[v].z) <= plane_tol; };
+  auto wet = [&](Index f) {
+    const Face& face = m.faces[f];
+    for (int c = 0; c < corner_count(face); ++c) {
+      if (m.positions[face[c]].z > plane_tol) return false;
+    }
+    return true;
+  };
+  auto run = [&](Index slot) -> std::array<Index, 2> {
     const Face& f = m.faces[slot / 4];
-    const Index a = f[slot % 4], b = f[(slot % 4 + 1) % corner_count(f)];
-    if (std::abs(m.positions[a].z) <= plane_tol && std::abs(m.positions[b].z) <= plane_tol) {
-      out.push_back({a, b});
+    return {f[slot % 4], f[(slot % 4 + 1) % corner_count(f)]};
+  };
+  std::vector<std::array<Index, 2>> out;
+  for (const MeshEdge& e : adj.edges) {
+    if (!on_plane(e.v0) || !on_plane(e.v1)) continue;
+    if (e.uses == 1) {
+      out.push_back(run(e.first_slot));
+    } else if (e.uses == 2) {
+      const Index f0 = e.first_slot / 4, f1 = adj.opposite_face[e.first_slot];
+      if (f1 == kInvalid || wet(f0) == wet(f1)) continue;  // inside the lid's plane, or dry
+      out.push_back(wet(f0) ? run(e.first_slot) : run(4 * f1 + adj.opposite_corner[e.first_slot]));
     }
   }
   return out;

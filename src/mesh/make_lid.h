@@ -1,8 +1,9 @@
 // The lid: panels on the interior free surface (the waterplane z = 0 inside the waterline), for
 // panel codes that remove irregular frequencies (WAMIT IRR = 1, HAMS WaterplaneMesh.pnl,
 // Capytaine's lid_mesh, NEMOH 3). Made from a finished wetted mesh in the floating frame: its
-// waterline (the boundary edges on z = 0) bounds the lid, and the lid's border vertices are the
-// hull's waterline vertices, so hull and lid meet vertex to vertex.
+// waterline (the boundary edges on z = 0, or for a hull meshed above the waterline too, the
+// edges on z = 0 between its wet and dry panels) bounds the lid, and the lid's border vertices
+// are the hull's waterline vertices, so hull and lid meet vertex to vertex.
 #pragma once
 
 #include <vector>

@@ -64,6 +64,7 @@ std::string to_json(const QualityReport& r, const QualityRules& rules, int inden
                    {"waterline_edges", t.waterline_edges},
                    {"above_water_edges", t.above_water_edges},
                    {"free_edges_below_waterline", t.free_edges_below},
+                   {"panels_across_waterline", t.panels_across_waterline},
                    {"nonmanifold_edges", t.nonmanifold_edges},
                    {"inconsistent_edges", t.inconsistent_edges},
                    {"flipped_faces", t.flipped_faces},
@@ -128,6 +129,7 @@ std::string format_table(const QualityReport& r, const QualityRules& rules) {
             f("%zu in %zu loops: %zu centre plane, %zu waterline, %zu above", t.boundary_edges,
               t.boundary_loops, t.centre_plane_edges, t.waterline_edges, t.above_water_edges));
   s += line("free edges below waterline", f("%zu", t.free_edges_below));
+  s += line("panels across waterline", f("%zu", t.panels_across_waterline));
   s += line("non-manifold edges", f("%zu", t.nonmanifold_edges));
   s += line("orientation consistent",
             t.orientation_consistent

@@ -96,6 +96,9 @@ struct TopologyFacts {
   std::size_t waterline_edges = 0;     // boundary edges on z = waterline_z
   std::size_t above_water_edges = 0;   // boundary edges above the waterline (deck, sheer)
   std::size_t free_edges_below = 0;    // any other boundary edge: a hole in the wetted hull
+  // Panels with corners on both sides of the waterplane: a mesh that goes on above the
+  // waterline should still end its panels on it.
+  std::size_t panels_across_waterline = 0;
   std::size_t nonmanifold_edges = 0;
   std::size_t inconsistent_edges = 0;  // interior edges used twice in the same direction
   std::size_t flipped_faces = 0;       // minority orientation of their connected component

@@ -94,6 +94,15 @@ void check_topology(const SurfaceMesh& mesh, const EdgeAdjacency& adj, const Res
         break;
     }
   }
+  for (const Face& f : mesh.faces) {
+    bool above = false, below = false;
+    for (int c = 0; c < corner_count(f); ++c) {
+      const double z = mesh.positions[f[c]].z;
+      above |= z > s.waterline_z + s.tol;
+      below |= z < s.waterline_z - s.tol;
+    }
+    t.panels_across_waterline += above && below ? 1 : 0;
+  }
   // Every face using a non-manifold edge: the slots of an edge are not stored, so scan them.
   if (!adj.nonmanifold_edges.empty()) {
     std::vector<std::uint8_t> bad(adj.edges.size(), 0);

@@ -8,12 +8,34 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "mesh/adjacency.h"
 #include "structured/border_path.h"
 
 namespace hm::structured {
-namespace {}  // namespace
+namespace {
+
+// The knuckle edges beyond an end station as a neighbour map: both ends beyond it (both_beyond)
+// or at least one.
+template <class Beyond>
+std::map<Index, std::vector<Index>> knuckle_neighbours(const FeatureSet& features,
+                                                       const Beyond& beyond, bool both_beyond) {
+  std::map<Index, std::vector<Index>> next;
+  for (const FeatureLine& l : features.knuckles) {
+    const std::size_t n = l.vertices.size();
+    for (std::size_t i = 0; i + 1 < n + (l.closed ? 1 : 0); ++i) {
+      const Index a = l.vertices[i], b = l.vertices[(i + 1) % n];
+      const int count = (beyond(a) ? 1 : 0) + (beyond(b) ? 1 : 0);
+      if (count < (both_beyond ? 2 : 1)) continue;
+      next[a].push_back(b);
+      next[b].push_back(a);
+    }
+  }
+  return next;
+}
+
+}  // namespace
 
 // The transverse knuckle beyond an end station (a transom's edge): a path of knuckle edges, every
 // vertex beyond the station, from one vertex of the boundary path to another. Returns its
@@ -25,16 +47,7 @@ std::vector<Index> end_knuckle(const SurfaceMesh& surface, const FeatureSet& fea
   auto beyond = [&](Index v) {
     return aft ? surface.positions[v].x < x : surface.positions[v].x > x;
   };
-  std::map<Index, std::vector<Index>> next;
-  for (const FeatureLine& l : features.knuckles) {
-    const std::size_t n = l.vertices.size();
-    for (std::size_t i = 0; i + 1 < n + (l.closed ? 1 : 0); ++i) {
-      const Index a = l.vertices[i], b = l.vertices[(i + 1) % n];
-      if (!beyond(a) || !beyond(b)) continue;
-      next[a].push_back(b);
-      next[b].push_back(a);
-    }
-  }
+  std::map<Index, std::vector<Index>> next = knuckle_neighbours(features, beyond, true);
   std::map<Index, std::size_t> place;
   for (std::size_t i = 0; i < path.size(); ++i) place.emplace(path[i], i);
   std::vector<Index> best;
@@ -70,6 +83,67 @@ std::vector<Index> end_knuckle(const SurfaceMesh& surface, const FeatureSet& fea
   }
   return best;
 }
+
+namespace {
+
+// Knuckles that cross the end station and end on the boundary beyond it (the waterline of a hull
+// meshed above it, a chine running into the stem): each pairs the row node where the knuckle
+// breaks the row (its index in the row's nodes) with the boundary path vertex it ends on (its
+// place in `path`), so that the cap can be zipped in pieces and no panel straddles the line.
+// Pairs ascend in both; one that would cross another is dropped.
+struct CapSplit {
+  std::size_t node = 0, place = 0;
+};
+std::vector<CapSplit> cap_splits(const SurfaceMesh& surface, const FeatureSet& features,
+                                 const std::vector<Index>& path, const RowCurve& c,
+                                 const std::vector<double>& node_s, double x, bool aft,
+                                 double tol) {
+  std::vector<CapSplit> out;
+  if (path.size() < 3 || c.breaks.size() < 3) return out;
+  auto beyond = [&](Index v) {
+    return aft ? surface.positions[v].x < x : surface.positions[v].x > x;
+  };
+  // Knuckle edges with at least one end beyond the station.
+  std::map<Index, std::vector<Index>> next = knuckle_neighbours(features, beyond, false);
+  for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+    if (!next.count(path[i]) || !beyond(path[i])) continue;
+    // Follow the knuckle from the path vertex to where it crosses the station plane.
+    std::vector<Index> queue{path[i]};
+    std::map<Index, bool> seen{{path[i], true}};
+    std::optional<Vec3d> crossing;
+    for (std::size_t q = 0; q < queue.size() && !crossing; ++q) {
+      for (Index w : next[queue[q]]) {
+        if (seen.count(w)) continue;
+        seen[w] = true;
+        if (beyond(w)) {
+          queue.push_back(w);
+          continue;
+        }
+        const Vec3d& pa = surface.positions[queue[q]];
+        const Vec3d& pb = surface.positions[w];
+        const double f = (x - pa.x) / (pb.x - pa.x);
+        crossing = pa + f * (pb - pa);
+        break;
+      }
+    }
+    if (!crossing) continue;
+    for (std::size_t b = 1; b + 1 < c.breaks.size(); ++b) {
+      const Breakpoint& br = c.breaks[b];
+      // A knuckle's break, or a plane's where the knuckle lies in the plane (the waterline).
+      if (br.label.kind != BreakKind::kKnuckle && br.label.kind != BreakKind::kPlane) continue;
+      if (norm(c.points[br.point] - *crossing) > tol) continue;
+      const auto it = std::lower_bound(node_s.begin(), node_s.end(), br.s);
+      if (it == node_s.end() || *it != br.s) continue;
+      const std::size_t node = static_cast<std::size_t>(it - node_s.begin());
+      if (node == 0 || node + 1 == node_s.size()) continue;
+      if (!out.empty() && (node <= out.back().node || i <= out.back().place)) continue;
+      out.push_back({node, i});
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const FeatureSet& features,
                    std::span<const Row> rows, std::span<const RowNodes> nodes,
@@ -173,10 +247,30 @@ CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const F
     const std::vector<Index> knuckle =
         end_knuckle(surface, features, best, row.x, aft, metric, p0, p1);
     if (knuckle.empty()) {
+      // In pieces between the knuckles that run from the row to the boundary beyond it; each
+      // knuckle's piece of line is the panel edge from its row node to its boundary vertex.
+      const std::vector<CapSplit> splits =
+          cap_splits(surface, features, best, c, nodes[j].s[0], row.x, aft, tol);
+      std::size_t node0 = 0, place0 = 0;
+      Index outer0 = row_first;
       std::vector<Vec3d> pts{c.points.front()};
-      for (const Vec3d& p : points_of(best)) pts.push_back(p);
-      pts.push_back(c.points.back());
-      zip(row_ids, add_nodes(pts, row_first, row_last, best));
+      for (std::size_t k = 0; k <= splits.size(); ++k) {
+        const bool last = k == splits.size();
+        const std::size_t node1 = last ? row_ids.size() - 1 : splits[k].node;
+        const std::size_t place1 = last ? best.size() - 1 : splits[k].place;
+        for (std::size_t i = place0; i <= place1; ++i) pts.push_back(surface.positions[best[i]]);
+        if (last) pts.push_back(c.points.back());
+        const Index outer1 = last ? row_last : new_vertex(best[place1]);
+        const std::vector<Index> inner(row_ids.begin() + static_cast<std::ptrdiff_t>(node0),
+                                       row_ids.begin() + static_cast<std::ptrdiff_t>(node1 + 1));
+        zip(inner, add_nodes(pts, outer0, outer1, best));
+        if (!last) counts.knuckle_edges.push_back({row_ids[node1], outer1});
+        node0 = node1;
+        place0 = place1;
+        outer0 = outer1;
+        pts.assign(1, surface.positions[best[place1]]);
+        ++place0;
+      }
       continue;
     }
     // A transom: the strip from the row to the knuckle (with the boundary pieces either side of

@@ -1,6 +1,6 @@
 // Cut: collect the side of every vertex -> snap vertices near the plane onto it (along their
 // patch, or along their line) -> collect the crossing edges and refine each crossing onto its
-// patch -> split the crossed faces, keeping the kept side -> compact the vertices.
+// patch -> split the crossed faces, keeping the kept side (or both) -> compact the vertices.
 #include "unstructured/cut_at_plane.h"
 
 #include <algorithm>
@@ -288,9 +288,9 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
         any_below |= side(v) < 0;
       }
     }
-    if (!any_below) continue;  // above or in the plane: dry
-    if (!any_above) {
-      // Wholly wet: kept as it is (a quad stays a quad).
+    if (!any_below && !options.keep_both) continue;  // above or in the plane: dry
+    if (!any_above || !any_below) {
+      // Wholly on the kept side: kept as it is (a quad stays a quad).
       m.faces.push_back(mesh.faces[f]);
       m.face_patch.push_back(mesh.face_patch[f]);
       if (blocks) m.face_block.push_back(mesh.face_block[f]);
@@ -301,34 +301,38 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
     for (int t = 0; t < n; ++t) {
       const auto& c = tris[t];
       const int s[3] = {side(c[0]), side(c[1]), side(c[2])};
-      if (s[0] >= 0 && s[1] >= 0 && s[2] >= 0) continue;
-      if (s[0] <= 0 && s[1] <= 0 && s[2] <= 0) {
-        emit(f, c[0], c[1], c[2]);
-        continue;
-      }
-      // Walk the triangle's boundary in order and keep the polygon at or below the plane: the
-      // corners with side <= 0 and the crossing of every edge that changes sign. It has 3 or 4
-      // corners, in the triangle's winding.
-      Index poly[4];
-      int count = 0;
-      for (int k = 0; k < 3; ++k) {
-        const int k1 = (k + 1) % 3;
-        if (s[k] <= 0) poly[count++] = c[k];
-        if (s[k] * s[k1] < 0) poly[count++] = cut_vertex(c[k], c[k1]);
-      }
-      if (count == 3) {
-        emit(f, poly[0], poly[1], poly[2]);
-      } else {
-        // Split the quad along its shorter diagonal.
-        const auto& x = m.positions;
-        const bool d02 =
-            squared_norm(x[poly[2]] - x[poly[0]]) <= squared_norm(x[poly[3]] - x[poly[1]]);
-        if (d02) {
+      // The kept side first (below), then with keep_both the other side: -1 keeps side <= 0.
+      for (const int keep : {-1, 1}) {
+        if (keep == 1 && !options.keep_both) break;
+        if (s[0] * keep <= 0 && s[1] * keep <= 0 && s[2] * keep <= 0) continue;  // none kept
+        if (s[0] * keep >= 0 && s[1] * keep >= 0 && s[2] * keep >= 0) {
+          emit(f, c[0], c[1], c[2]);
+          continue;
+        }
+        // Walk the triangle's boundary in order and keep the polygon on this side of the plane:
+        // the corners with side * keep >= 0 and the crossing of every edge that changes sign.
+        // It has 3 or 4 corners, in the triangle's winding.
+        Index poly[4];
+        int count = 0;
+        for (int k = 0; k < 3; ++k) {
+          const int k1 = (k + 1) % 3;
+          if (s[k] * keep >= 0) poly[count++] = c[k];
+          if (s[k] * s[k1] < 0) poly[count++] = cut_vertex(c[k], c[k1]);
+        }
+        if (count == 3) {
           emit(f, poly[0], poly[1], poly[2]);
-          emit(f, poly[0], poly[2], poly[3]);
         } else {
-          emit(f, poly[0], poly[1], poly[3]);
-          emit(f, poly[1], poly[2], poly[3]);
+          // Split the quad along its shorter diagonal.
+          const auto& x = m.positions;
+          const bool d02 =
+              squared_norm(x[poly[2]] - x[poly[0]]) <= squared_norm(x[poly[3]] - x[poly[1]]);
+          if (d02) {
+            emit(f, poly[0], poly[1], poly[2]);
+            emit(f, poly[0], poly[2], poly[3]);
+          } else {
+            emit(f, poly[0], poly[1], poly[3]);
+            emit(f, poly[1], poly[2], poly[3]);
+          }
         }
       }
     }

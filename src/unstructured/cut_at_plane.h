@@ -25,6 +25,10 @@ struct PlaneCutOptions {
   int axis = 2;
   double value = 0;
   bool keep_below = true;
+  // Split only: both sides are kept and the plane becomes a line of mesh edges inside the surface
+  // (the waterline of a hull meshed above the waterplane too). keep_below then only orients
+  // side() and does not drop anything.
+  bool keep_both = false;
   // A vertex closer to the plane than this fraction of its shortest edge is moved onto it first,
   // so that the cut leaves no sliver (the move is at most half that edge, so no triangle folds).
   // A vertex inside one smooth patch moves along the patch; a vertex on a line (the mesh

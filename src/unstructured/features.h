@@ -44,6 +44,10 @@ struct FeatureOptions {
   std::vector<KnuckleHint> suppress;  // edges never knuckles (wins over add)
   // z of a waterline cut (boundary edges on it are kWaterline); NaN: none.
   double waterline_z = std::numeric_limits<double>::quiet_NaN();
+  // The surface goes on above the waterline (it was split at waterline_z, not cut): its interior
+  // edges on the plane are knuckles whatever the angle or the hints say, so that every mesher
+  // ends its panels on the waterline.
+  bool waterline_inside = false;
 };
 
 // Rules per boundary edge, first match wins (tolerances relative to L, the largest bounding-box

@@ -391,6 +391,15 @@ KnuckleEdges find_knuckles(const SurfaceMesh& mesh, const EdgeAdjacency& adjacen
   const std::vector<SmoothPieces> pieces =
       confirm ? smooth_pieces(patches) : std::vector<SmoothPieces>{};
 
+  // The cut sets its vertices' z to the plane's value exactly; 1e-9 L only absorbs a file whose
+  // own vertices lie there.
+  const double wl = options.waterline_z, wl_tol = 1e-9 * length;
+  auto on_waterline = [&](Index e) {
+    if (!options.waterline_inside || std::isnan(wl)) return false;
+    const MeshEdge& me = adjacency.edges[e];
+    return std::abs(mesh.positions[me.v0].z - wl) <= wl_tol &&
+           std::abs(mesh.positions[me.v1].z - wl) <= wl_tol;
+  };
   std::vector<std::uint8_t> flags(adjacency.edges.size(), 0);
   parallel_for(0, adjacency.edges.size(), [&](std::size_t i) {
     const Index e = static_cast<Index>(i);
@@ -404,6 +413,7 @@ KnuckleEdges find_knuckles(const SurfaceMesh& mesh, const EdgeAdjacency& adjacen
     }
     if (any_matches(add, mesh, adjacency, e)) f |= kKnuckle;
     if (any_matches(suppress, mesh, adjacency, e)) f &= ~kKnuckle;
+    if (on_waterline(e)) f |= kKnuckle;
     flags[i] = static_cast<std::uint8_t>(f);
   });
   if (confirm) {

@@ -135,6 +135,54 @@ TEST(CutAtPlane, WigleyWettedAreaAndVolumeMatchTheClosedForm) {
   EXPECT_NEAR(h.volume / c.hull.facts.displacement_volume, 1, 3e-3);
 }
 
+TEST(CutAtPlane, KeepBothSplitsTheSurfaceAlongTheWaterlineAndDropsNothing) {
+  // The hull meshed above its waterline too: every face lies wholly on one side of the plane,
+  // the area is the whole surface's, the wet faces are exactly those of the ordinary cut, and
+  // the waterline is a line of interior edges (the outline stays one loop).
+  HullSpec spec;
+  spec.kind = HullKind::kWigley;
+  spec.patches = 4;
+  PlaneCutOptions co;
+  co.value = 4.1;
+  co.keep_both = true;
+  co.snap_fraction = 0;  // no vertex moves, so the split faces are the crossed ones
+  const Cut both = cut_hull(spec, co);
+  co.keep_both = false;
+  const Cut wet = cut_hull(spec, co);
+  const SurfaceMesh& m = both.cut.mesh;
+  double area = 0, merged_area = 0, wet_area = 0, below_area = 0;
+  for (const Face& f : m.faces) {
+    bool above = false, below = false;
+    for (int k = 0; k < corner_count(f); ++k) {
+      above |= m.positions[f[k]].z > co.value;
+      below |= m.positions[f[k]].z < co.value;
+    }
+    EXPECT_FALSE(above && below);
+    area += face_area(m.positions, f);
+    if (!above) below_area += face_area(m.positions, f);
+  }
+  for (const Face& f : both.merged.mesh.faces)
+    merged_area += face_area(both.merged.mesh.positions, f);
+  for (const Face& f : wet.cut.mesh.faces) wet_area += face_area(wet.cut.mesh.positions, f);
+  // The new vertices lie on the NURBS, not on the chords they split: the area moves by the chord
+  // error's order (1e-4 L edges), not more.
+  EXPECT_NEAR(area / merged_area, 1, 1e-5);
+  EXPECT_NEAR(below_area / wet_area, 1, 1e-12);
+  EXPECT_GT(both.cut.report.faces_split, 20u);
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(adj.inconsistent_edges.empty());
+  EXPECT_EQ(adj.boundary_loops.size(), 1u);
+  std::size_t waterline_edges = 0;
+  for (const MeshEdge& e : adj.edges) {
+    if (m.positions[e.v0].z == co.value && m.positions[e.v1].z == co.value) {
+      EXPECT_EQ(e.uses, 2u);
+      ++waterline_edges;
+    }
+  }
+  EXPECT_GT(waterline_edges, 50u);
+}
+
 TEST(CutAtPlane, SameArraysWithOneAndTwoThreads) {
   Cut one, two;
   {

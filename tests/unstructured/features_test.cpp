@@ -293,6 +293,46 @@ TEST(Features, WaterlineCutBoundaryIsWaterline) {
   EXPECT_EQ(n[BoundaryKind::kDeckEdge], 0u);
 }
 
+TEST(Features, WaterlineInsideTheSurfaceIsAKnuckleLine) {
+  // A smooth Wigley with no knuckle: its grid row nearest z = 3 m lies inside the surface. Told
+  // that the waterline runs there inside the surface, every interior edge on that row is a
+  // knuckle (one line from end to end), even with a hint that suppresses everything near it;
+  // without the flag there is none.
+  const Hull& h = hull(HullKind::kWigley);
+  const SurfaceMesh& m = h.tess.mesh;
+  double row = 0, best = INFINITY;
+  for (const Vec3d& p : m.positions) {
+    if (std::abs(p.z - 3.0) < best) best = std::abs(p.z - 3.0), row = p.z;
+  }
+  const EdgeAdjacency adjacency = build_edge_adjacency(m.faces, m.vertex_count());
+  std::size_t on_row = 0;
+  for (const MeshEdge& e : adjacency.edges) {
+    on_row += e.uses == 2 && std::abs(m.positions[e.v0].z - row) < 1e-8 &&
+              std::abs(m.positions[e.v1].z - row) < 1e-8;
+  }
+  ASSERT_GT(on_row, 10u);
+  FeatureOptions o;
+  o.waterline_z = row;
+  EXPECT_EQ(find_features(m, adjacency, h.generated.patches, o).knuckles.size(), 0u);
+  o.waterline_inside = true;
+  KnuckleHint everything;
+  everything.plane_point = {0, 0, row};
+  everything.plane_normal = {0, 0, 1};
+  everything.distance = 10;
+  o.suppress.push_back(everything);
+  const FeatureSet f = find_features(m, adjacency, h.generated.patches, o);
+  std::size_t knuckle_edges = 0;
+  for (std::size_t e = 0; e < adjacency.edges.size(); ++e) {
+    if (!f.edge_knuckle[e]) continue;
+    ++knuckle_edges;
+    // The grid row's z to rounding (the rule's tolerance is 1e-9 L).
+    EXPECT_NEAR(m.positions[adjacency.edges[e].v0].z, row, 1e-8);
+    EXPECT_NEAR(m.positions[adjacency.edges[e].v1].z, row, 1e-8);
+  }
+  EXPECT_EQ(knuckle_edges, on_row);
+  EXPECT_EQ(f.knuckles.size(), 1u);
+}
+
 TEST(Features, HintsAddAndSuppressKnuckles) {
   const Hull& h = hull(HullKind::kChine);
   const FeatureSet plain = features(h);
