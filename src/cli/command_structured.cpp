@@ -86,7 +86,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   const SurfaceMesh& fine = ph.fine();
   // Meshed above the waterline too: the waterplane is a lateral block plane, so every row has a
   // node on it and the blocks below and above meet on the waterline.
-  if (ph.floating && ph.floating->top_cut) {
+  if (ph.floating && ph.floating->meshes_above()) {
     c.structured.planes.push_back({Vec3d{0, 0, 0}, Vec3d{0, 0, 1}, "waterline"});
   }
   record.log.stage("query");
@@ -214,7 +214,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         quality.topology.boundary_loops, quality.topology.nonmanifold_edges,
         quality.topology.free_edges_below,
         quality.topology.orientation_consistent ? "consistent" : "INCONSISTENT");
-    if (ph.floating && ph.floating->top_cut) {
+    if (ph.floating && ph.floating->meshes_above()) {
       std::printf(
           "  above the waterline up to z = %.4g m: %zu panels end on the waterline from above, "
           "%zu cross it\n",

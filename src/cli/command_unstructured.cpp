@@ -234,7 +234,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
           cr.unconverged);
       print_hydrostatics(*hydro_mesh, *hydro_nurbs);
       std::printf("  free edges below the waterline: %zu\n", quality.topology.free_edges_below);
-      if (floating->top_cut) {
+      if (floating->meshes_above()) {
         std::printf(
             "  above the waterline up to z = %.4g m: %zu panels end on the waterline from above, "
             "%zu cross it\n",

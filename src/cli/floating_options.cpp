@@ -125,9 +125,6 @@ Floating resolve_floating(const FloatingArgs& a, std::span<const Patch> patches,
                   f.draft, f.trim_deg, f.heel_deg);
     throw UsageError(text);
   }
-  // Cut even when the height looks above the top: the sample above is coarse, and a cut with
-  // nothing above it keeps every face.
-  f.top_cut = f.above_waterline > 0;
   return f;
 }
 

@@ -42,10 +42,13 @@ void add_floating_options(CLI::App* cmd, FloatingArgs& args);
 struct Floating {
   FloatingTransform transform;  // file frame -> floating frame (free surface z = 0)
   double draft = 0, baseline_z = 0, pivot_x = 0, trim_deg = 0, heel_deg = 0;
-  // The surface above the waterplane is kept up to z = above_waterline (floating frame, m);
-  // top_cut: the hull is cut there (above_waterline > 0).
+  // The surface above the waterplane is kept up to z = above_waterline (floating frame, m); 0:
+  // the wetted part only.
   double above_waterline = 0;
-  bool top_cut = false;
+  // The hull is cut at z = above_waterline and split at the waterplane. It is cut even when the
+  // height looks above the top (the placement's sample is coarse; a cut with nothing above it
+  // keeps every face).
+  bool meshes_above() const { return above_waterline > 0; }
 };
 
 // The placement for `args` of a hull whose surfaces span `box` (file frame, metres). Throws

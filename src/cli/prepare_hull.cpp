@@ -144,7 +144,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     }
     out.placed = transformed(out.hull.patches, out.floating->transform);
     features.waterline_z = 0;
-    features.waterline_inside = out.floating->top_cut;
+    features.waterline_inside = out.floating->meshes_above();
   }
   out.seconds_import = seconds_since(t0);
   const std::span<const Patch> patches = out.patches();
@@ -169,7 +169,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     out.top_cut.reset();
     out.waterplane_cut.reset();
     out.centre_cut.reset();
-    if (out.floating && out.floating->top_cut) {
+    if (out.floating && out.floating->meshes_above()) {
       PlaneCutOptions to;
       to.value = out.floating->above_waterline;
       out.top_cut = cut_at_plane(patches, out.fine(), to);
@@ -177,7 +177,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     if (out.floating) {
       // Meshed above the waterline too: the waterplane splits the surface and stays a line in it.
       PlaneCutOptions wo;
-      wo.keep_both = out.floating->top_cut;
+      wo.keep_both = out.floating->meshes_above();
       out.waterplane_cut = cut_at_plane(patches, out.fine(), wo);
     }
     if (args.cut_centre_plane && !out.file_half) {
