@@ -46,7 +46,8 @@ struct StructuredCommand {
 };
 
 int run_structured(StructuredCommand c, const GlobalOptions& g) {
-  check_lid_args(c.lid, c.floating.given());
+  require_waterplane("--lid", c.lid.wanted(), c.floating);
+  require_waterplane("--above-waterline", c.floating.above_waterline > 0, c.floating);
   check_mesh_output(c.output);
   if (!c.size.empty()) {
     const auto v = parse_numbers(c.size, 3, "--size");
@@ -218,7 +219,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
       std::printf(
           "  above the waterline up to z = %.4g m: %zu panels end on the waterline from above, "
           "%zu cross it\n",
-          ph.floating->above_waterline, above_waterline_panels(*output),
+          ph.floating->above_waterline, quality.topology.panels_above_on_waterline,
           quality.topology.panels_across_waterline);
     }
     std::printf(

@@ -78,7 +78,8 @@ void parse_sources(UnstructuredCommand& c) {
 }
 
 int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
-  check_lid_args(c.lid, c.floating.given());
+  require_waterplane("--lid", c.lid.wanted(), c.floating);
+  require_waterplane("--above-waterline", c.floating.above_waterline > 0, c.floating);
   parse_sources(c);
   check_mesh_output(c.output);
   // The fine mesh: sized from the panel target unless the user sized it (over the whole hull, so
@@ -238,7 +239,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
         std::printf(
             "  above the waterline up to z = %.4g m: %zu panels end on the waterline from above, "
             "%zu cross it\n",
-            floating->above_waterline, above_waterline_panels(*output),
+            floating->above_waterline, quality.topology.panels_above_on_waterline,
             quality.topology.panels_across_waterline);
       }
     }

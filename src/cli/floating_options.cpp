@@ -43,6 +43,13 @@ void add_floating_options(CLI::App* cmd, FloatingArgs& a) {
                   "hull's aft and forward ends)");
 }
 
+void require_waterplane(const std::string& option, bool wanted, const FloatingArgs& args) {
+  if (wanted && !args.given()) {
+    throw UsageError(
+        option + " needs a waterplane: give --draft, --waterline-z, --drafts, --trim or --heel");
+  }
+}
+
 namespace {
 
 // --drafts TA,TF as a draft at the middle of the perpendiculars and the trim between them: the

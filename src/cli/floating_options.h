@@ -39,6 +39,10 @@ struct FloatingArgs {
 
 void add_floating_options(CLI::App* cmd, FloatingArgs& args);
 
+// UsageError naming `option` when it is asked for (wanted) without a waterplane: checked before
+// any meshing.
+void require_waterplane(const std::string& option, bool wanted, const FloatingArgs& args);
+
 struct Floating {
   FloatingTransform transform;  // file frame -> floating frame (free surface z = 0)
   double draft = 0, baseline_z = 0, pivot_x = 0, trim_deg = 0, heel_deg = 0;

@@ -16,13 +16,6 @@ void add_lid_options(CLI::App* cmd, LidArgs& args) {
                 "Append the lid's panels after the hull's in the output itself (WAMIT IRR = 1)");
 }
 
-void check_lid_args(const LidArgs& args, bool waterplane_given) {
-  if (args.wanted() && !waterplane_given) {
-    throw UsageError(
-        "--lid needs a waterplane: give --draft, --waterline-z, --drafts, --trim or --heel");
-  }
-}
-
 std::string lid_path(const std::string& output) {
   namespace fs = std::filesystem;
   const fs::path p(output);

@@ -20,9 +20,6 @@ struct LidArgs {
 
 void add_lid_options(CLI::App* cmd, LidArgs& args);
 
-// UsageError when a lid is asked for without a waterplane: checked before any meshing.
-void check_lid_args(const LidArgs& args, bool waterplane_given);
-
 // Where --lid writes: WaterplaneMesh.pnl beside a .pnl output (the name HAMS reads), else
 // NAME_lid.EXT beside NAME.EXT.
 std::string lid_path(const std::string& output);

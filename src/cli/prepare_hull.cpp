@@ -19,21 +19,6 @@ double hull_length(const SurfaceMesh& m) {
   return std::max({e.x, e.y, e.z});
 }
 
-std::size_t above_waterline_panels(const SurfaceMesh& m) {
-  std::size_t n = 0;
-  for (const Face& f : m.faces) {
-    const int k = corner_count(f);
-    bool below = false, on_edge = false;
-    for (int c = 0; c < k; ++c) {
-      const double z0 = m.positions[f[c]].z, z1 = m.positions[f[(c + 1) % k]].z;
-      below |= z0 < 0;
-      on_edge |= z0 == 0 && z1 == 0;
-    }
-    n += !below && on_edge ? 1 : 0;
-  }
-  return n;
-}
-
 namespace {
 
 // A trim curve in (u, v) under u -> u0 + u1 - u, run backwards (so a loop of such curves keeps
@@ -114,11 +99,6 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   const long long t0 = now_ns();
   out.hull = load_hull(args.file, args.units, args.quiet);
   FeatureOptions features = args.features;
-  if (args.floating.above_waterline > 0 && !args.floating.given()) {
-    throw UsageError(
-        "--above-waterline needs a waterplane: give --draft, --waterline-z, --drafts, --trim or "
-        "--heel");
-  }
   // Floating: the patches are placed first, so that everything below works in the floating frame
   // and the waterplane z = 0 cuts the merged fine mesh before it is meshed.
   if (args.floating.given()) {

@@ -90,9 +90,6 @@ void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs);
 // ship) and grows the bounding box to match.
 void add_mirror_image(ImportResult& hull);
 
-// Panels above z = 0 with an edge on it (how many panels meet the waterline from above).
-std::size_t above_waterline_panels(const SurfaceMesh& m);
-
 // Largest extent of the mesh's bounding box, m.
 double hull_length(const SurfaceMesh& m);
 

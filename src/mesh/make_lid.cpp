@@ -95,7 +95,8 @@ Waterlines collect_waterlines(const SurfaceMesh& m, double plane_tol, double cen
   const std::vector<std::array<Index, 2>> edges = waterline_edges(m, plane_tol);
   if (edges.empty()) {
     throw GeometryError(
-        "lid: the mesh has no waterline (no free edge on z = 0); a lid needs a hull cut at its "
+        "lid: the mesh has no waterline (no edge on z = 0 bounding its wet panels); a lid needs a "
+        "hull cut at its "
         "waterplane (--draft or --waterline-z)");
   }
   const std::size_t n = m.vertex_count();

@@ -65,6 +65,7 @@ std::string to_json(const QualityReport& r, const QualityRules& rules, int inden
                    {"above_water_edges", t.above_water_edges},
                    {"free_edges_below_waterline", t.free_edges_below},
                    {"panels_across_waterline", t.panels_across_waterline},
+                   {"panels_above_on_waterline", t.panels_above_on_waterline},
                    {"nonmanifold_edges", t.nonmanifold_edges},
                    {"inconsistent_edges", t.inconsistent_edges},
                    {"flipped_faces", t.flipped_faces},

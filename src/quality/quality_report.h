@@ -99,6 +99,8 @@ struct TopologyFacts {
   // Panels with corners on both sides of the waterplane: a mesh that goes on above the
   // waterline should still end its panels on it.
   std::size_t panels_across_waterline = 0;
+  // Panels wholly at or above the waterplane with an edge on it (a mesh that goes on above).
+  std::size_t panels_above_on_waterline = 0;
   std::size_t nonmanifold_edges = 0;
   std::size_t inconsistent_edges = 0;  // interior edges used twice in the same direction
   std::size_t flipped_faces = 0;       // minority orientation of their connected component

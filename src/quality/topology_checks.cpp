@@ -94,14 +94,18 @@ void check_topology(const SurfaceMesh& mesh, const EdgeAdjacency& adj, const Res
         break;
     }
   }
+  auto on_plane = [&](Index v) { return std::abs(mesh.positions[v].z - s.waterline_z) <= s.tol; };
   for (const Face& f : mesh.faces) {
-    bool above = false, below = false;
-    for (int c = 0; c < corner_count(f); ++c) {
+    const int n = corner_count(f);
+    bool above = false, below = false, edge_on_plane = false;
+    for (int c = 0; c < n; ++c) {
       const double z = mesh.positions[f[c]].z;
       above |= z > s.waterline_z + s.tol;
       below |= z < s.waterline_z - s.tol;
+      edge_on_plane |= on_plane(f[c]) && on_plane(f[(c + 1) % n]);
     }
     t.panels_across_waterline += above && below ? 1 : 0;
+    t.panels_above_on_waterline += above && !below && edge_on_plane ? 1 : 0;
   }
   // Every face using a non-manifold edge: the slots of an edge are not stored, so scan them.
   if (!adj.nonmanifold_edges.empty()) {

@@ -35,8 +35,6 @@ std::map<Index, std::vector<Index>> knuckle_neighbours(const FeatureSet& feature
   return next;
 }
 
-}  // namespace
-
 // The transverse knuckle beyond an end station (a transom's edge): a path of knuckle edges, every
 // vertex beyond the station, from one vertex of the boundary path to another. Returns its
 // vertices from the one nearer the row's lower end, and their places p0 < p1 in `path`; empty
@@ -83,8 +81,6 @@ std::vector<Index> end_knuckle(const SurfaceMesh& surface, const FeatureSet& fea
   }
   return best;
 }
-
-namespace {
 
 // Knuckles that cross the end station and end on the boundary beyond it (the waterline of a hull
 // meshed above it, a chine running into the stem): each pairs the row node where the knuckle
