@@ -18,6 +18,7 @@
 #include "cli/load_hull.h"
 #include "cli/prepare_hull.h"
 #include "cli/run_record.h"
+#include "cli/validate_stage.h"
 #include "core/bbox.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
@@ -96,6 +97,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   pa.merge = c.merge;
   pa.features = c.features;
   pa.quiet = g.quiet;
+  pa.validate = g.validate;
   RunRecord& record = *g.record;
   pa.progress = &record.log;
   const std::size_t panels = c.coarsen.target_panels > 0 ? c.coarsen.target_panels : 4000;
@@ -130,10 +132,28 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   SurfaceMesh coarse = panels_mesh.mesh;
   const std::size_t centre_snapped =
       file_half || centre_cut ? snap_to_centre_plane(coarse, centre_tol) : 0;
+  // A sliver along the open side whose corners all ended on y = 0 has no area there (npl's
+  // transom): it goes, and the open side runs along its other edges, in the same line.
+  const std::size_t on_plane_dropped =
+      file_half || centre_cut ? drop_centre_plane_faces(coarse) : 0;
   record.log.stage("report");
   const long long t2 = now_ns();
   const HullQuery query(patches, fine);
   const DeviationMeasure dev = measure_deviation(query, coarse);
+  if (g.validate) {
+    // The coarsening keeps every knuckle and boundary line (chords of it) and every boundary
+    // loop, and stays within its deviation bound.
+    InvariantOptions io;
+    io.deviation = dev.max;
+    io.deviation_where = dev.where;
+    // The merge closed the patches' gaps by moving their borders: up to the widest gap there.
+    io.max_deviation = r.max_deviation + merged.report.widest_gap_closed;
+    io.feature_length_in = features.knuckle_length();
+    for (const BoundaryRun& b : features.boundaries) io.feature_length_in += b.length;
+    io.feature_length_out = edges_length(coarse, panels_mesh.feature_edges);
+    io.boundary_loops_in = adj.boundary_loops.size();
+    validate_stage(c.file, "coarsen", coarse, io);
+  }
 
   // The full hull from a half, mirrored after coarsening (so both sides are panelled alike).
   const SurfaceMesh* output = &coarse;
@@ -150,6 +170,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   qo.rules.min_triangle_angle_share = 0;
   if (floating) qo.waterline_z = 0;
   const QualityReport quality = assess_quality(*output, qo);
+  if (g.validate && mirrored) validate_stage(c.file, "mirror", *output, {});
   // The mesh's hydrostatics against the exact NURBS at the same position: the direct measure of
   // the panels' geometric accuracy.
   std::optional<Hydrostatics> hydro_mesh, hydro_nurbs;
@@ -181,7 +202,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
 
   if (!g.quiet) {
     std::printf("%s: %zu panels, %zu vertices (from %zu fine triangles)\n", c.output.c_str(),
-                r.panels, r.vertices, r.input_faces);
+                coarse.face_count(), r.vertices, r.input_faces);
     print_lid(lid, c.lid, c.output);
     if (mirrored) {
       std::printf("  mirrored about y = 0: %zu panels, %zu vertices in the full hull\n",
@@ -197,6 +218,9 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
     if (centre_snapped > 0) {
       std::printf("  %zu vertices of the open side moved onto y = 0 (at most %.3g m)\n",
                   centre_snapped, centre_tol);
+    }
+    if (on_plane_dropped > 0) {
+      std::printf("  %zu panels lying in the centre plane dropped\n", on_plane_dropped);
     }
     std::printf("  symmetry: %s\n", quality.half_hull
                                         ? "half hull, y = 0 flag written where the format has one"

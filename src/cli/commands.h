@@ -17,6 +17,7 @@ struct GlobalOptions {
   bool quiet = false;
   bool verbose = false;
   bool no_record = false;  // --no-run-json: no `*.run.json` beside the output
+  bool validate = false;   // --validate: invariants checked between stages (validate_stage.h)
   // The current run's stage log and record, set before the action runs (never null then).
   RunRecord* record = nullptr;
 };

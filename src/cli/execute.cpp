@@ -4,6 +4,7 @@
 #include <regex>
 
 #include "cli/run_record.h"
+#include "cli/validate_stage.h"
 #include "core/error.h"
 
 namespace hm::cli {
@@ -32,6 +33,11 @@ std::unique_ptr<Invocation> make_invocation() {
   app.add_flag("-v,--verbose", global.verbose, "Print more detail");
   app.add_flag("--no-run-json", global.no_record,
                "Do not write the *.run.json record beside an output mesh");
+  global.validate = validation_from_environment();
+  app.add_flag("--validate", global.validate,
+               "Check the mesh invariants between stages (manifold, oriented, no zero-area "
+               "panels, deviation bound, feature lines kept); exit 1 naming a stage that breaks "
+               "one (default on when HULLMESH_VALIDATE is set)");
   Action& action = inv->action;
   register_info(app, global, action);
   register_generate(app, global, action);

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "cli/load_hull.h"
+#include "cli/validate_stage.h"
 #include "core/bbox.h"
 #include "core/error.h"
 #include "mesh/mirror_mesh.h"
@@ -139,6 +140,12 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
       o.edge_length = edge_length_for_triangles(patches, triangles);
     progress.stage("tessellate");
     out.tessellation = tessellate(patches, o, progress);
+    if (args.validate) {
+      // Each patch's triangulation on its own: the patches are not welded yet.
+      InvariantOptions io;
+      io.no_zero_area = false;  // a pole of a patch may leave slivers the merge removes
+      validate_stage(args.file, "tessellate", out.tessellation.mesh, io);
+    }
     progress.stage("merge");
     out.merged = merge_patches(patches, out.tessellation.mesh, args.merge, progress);
     progress.stage("cut");
@@ -186,6 +193,11 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   const SurfaceMesh& fine = out.fine();
   check_merged_manifold(args.file, fine, out.adjacency,
                         "`hullmesh merge` writes the surface for inspection");
+  // What the meshers are given: a merge fault in a part a cut takes away is not passed on.
+  if (args.validate) {
+    const bool cut = out.top_cut || out.waterplane_cut || out.centre_cut;
+    validate_stage(args.file, cut ? "merge and cut" : "merge", fine, {});
+  }
   out.features = find_features(fine, out.adjacency, patches, features);
   out.seconds_features = seconds_since(t1);
 }

@@ -32,6 +32,8 @@ struct PrepareArgs {
   // Times the fine mesh may be made twice as dense when the merge leaves non-manifold edges (only
   // when fine_triangles sizes it).
   int finer_retries = 0;
+  // --validate: the invariants of each stage's mesh are checked as it ends (validate_stage.h).
+  bool validate = false;
   // Told each stage as it starts (import, tessellate, merge, cut, features); null: silent.
   Progress* progress = nullptr;
 };

@@ -41,7 +41,8 @@ fs::path hullmesh_exe() {
 
 RunResult run_hullmesh(const std::string& args) {
   RunResult r;
-  const std::string cmd = hullmesh_exe().string() + " " + args + " 2>&1";
+  // Every command in the tests checks the invariants between its stages (issue 10).
+  const std::string cmd = "HULLMESH_VALIDATE=1 " + hullmesh_exe().string() + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;

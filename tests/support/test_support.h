@@ -19,7 +19,8 @@ struct RunResult {
   int exit_code = -1;
   std::string out;  // stdout and stderr, interleaved
 };
-// Runs `hullmesh ARGS` through the shell, capturing output.
+// Runs `hullmesh ARGS` through the shell, capturing output, with HULLMESH_VALIDATE=1 (every
+// stage's invariants checked, as `--validate` does).
 RunResult run_hullmesh(const std::string& args);
 
 }  // namespace hm::test
