@@ -55,7 +55,11 @@ void add_options(const json& options, const std::string& mesher, const std::stri
 }  // namespace
 
 Manifest read_manifest(const std::string& path, const std::string& out_dir, std::size_t max_jobs) {
-  const json m = read_json_file(path);
+  return read_manifest_json(read_json_file(path), path, out_dir, max_jobs);
+}
+
+Manifest read_manifest_json(const json& m, const std::string& path, const std::string& out_dir,
+                            std::size_t max_jobs) {
   Manifest result;
   result.path = path;
   if (!m.is_object()) throw UsageError(path + ": a manifest is a JSON object");
@@ -127,6 +131,8 @@ Manifest read_manifest(const std::string& path, const std::string& out_dir, std:
         }
         meshers.push_back(v);
       }
+      // An empty list would drop the hull's jobs without a word.
+      if (meshers.empty()) throw UsageError(where + ": grid key 'mesher' has no values");
       axes.erase("mesher");
     }
     for (const auto& [key, values] : axes) {
@@ -136,12 +142,18 @@ Manifest read_manifest(const std::string& path, const std::string& out_dir, std:
         result.grid_keys.push_back(key);
       }
     }
-    // The cartesian product, keys in name order.
+    // The cartesian product, keys in name order. Its size is checked one factor at a time, before
+    // any job exists: 32 keys of 4 values each would wrap a 64-bit product to 0.
     std::vector<std::pair<std::string, std::vector<json>>> ordered(axes.begin(), axes.end());
+    const std::size_t room = max_jobs - std::min(max_jobs, result.jobs.size());
+    const auto too_many = [&] {
+      return UsageError(path + ": more than " + std::to_string(max_jobs) + " jobs");
+    };
     std::size_t count = meshers.size();
-    for (const auto& [key, values] : ordered) count *= values.size();
-    if (result.jobs.size() + count > max_jobs) {
-      throw UsageError(path + ": more than " + std::to_string(max_jobs) + " jobs");
+    if (count > room) throw too_many();
+    for (const auto& [key, values] : ordered) {
+      if (values.size() > room / count) throw too_many();
+      count *= values.size();
     }
     for (const std::string& mesher : meshers) {
       std::vector<std::size_t> at(ordered.size(), 0);

@@ -44,6 +44,11 @@ struct Manifest {
 Manifest read_manifest(const std::string& path, const std::string& out_dir,
                        std::size_t max_jobs = 100'000);
 
+// read_manifest for a manifest already parsed: `path` names it in messages and its folder is where
+// relative paths start.
+Manifest read_manifest_json(const nlohmann::json& manifest, const std::string& path,
+                            const std::string& out_dir, std::size_t max_jobs = 100'000);
+
 // The jobs of shard `k` of `n`: every n-th job of the sorted list, starting at the k-th.
 std::vector<std::size_t> shard_jobs(const Manifest& m, std::size_t k, std::size_t n);
 

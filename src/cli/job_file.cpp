@@ -70,16 +70,32 @@ void scan_overrides(const CLI::App& cmd, const std::vector<std::string>& words,
 
 }  // namespace
 
+json parse_json_text(std::string_view text, const std::string& where) {
+  // Depth is the number of enclosing arrays and objects; stopping at the opening bracket keeps
+  // every later copy and dump of the value shallow.
+  const auto limit_depth = [&where](int depth, json::parse_event_t event, json&) {
+    const bool opens =
+        event == json::parse_event_t::object_start || event == json::parse_event_t::array_start;
+    if (opens && depth >= kMaxJsonDepth) {
+      throw InputError(where + ": not valid JSON: nested deeper than " +
+                       std::to_string(kMaxJsonDepth) + " levels");
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, limit_depth);
+  } catch (const json::exception& e) {
+    // parse_error for bad syntax, out_of_range for a number beyond a double (1e400).
+    throw InputError(where + ": not valid JSON: " + e.what());
+  }
+}
+
 json read_json_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw IoError(path + ": cannot read the file");
   std::stringstream ss;
   ss << in.rdbuf();
-  try {
-    return json::parse(ss.str());
-  } catch (const json::parse_error& e) {
-    throw InputError(path + ": not valid JSON: " + e.what());
-  }
+  return parse_json_text(ss.str(), path);
 }
 
 std::vector<std::string> job_arguments(const json& job, const std::string& where,

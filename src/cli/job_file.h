@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hm::cli {
@@ -18,7 +19,15 @@ std::vector<std::string> job_arguments(const nlohmann::json& job, const std::str
                                        const std::string& base_folder,
                                        const std::vector<std::string>& overrides);
 
-// Reads and parses a job file; InputError naming the file and the JSON fault.
+// Deepest nesting of arrays and objects a job file or manifest may have. Copying and printing a
+// JSON value recurse once per level, so a deeper file could overflow the stack; real ones need 4.
+inline constexpr int kMaxJsonDepth = 64;
+
+// Parses the text of a job file or manifest; InputError beginning with `where` (the file) for a
+// JSON fault or nesting deeper than kMaxJsonDepth.
+nlohmann::json parse_json_text(std::string_view text, const std::string& where);
+
+// Reads and parses a job file (parse_json_text); IoError if it cannot be read.
 nlohmann::json read_json_file(const std::string& path);
 
 }  // namespace hm::cli
