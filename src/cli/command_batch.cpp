@@ -56,6 +56,7 @@ int run_batch_command(const BatchCommand& c, const GlobalOptions& g) {
     if (!c.shard.empty()) parse_shard(c.shard, o);
     o.display = RunLog::mode_for(g.quiet);
     o.verbose = g.verbose && !g.quiet;
+    o.validate = g.validate;
     r = run_batch(m, o);
     what = r.interrupted ? "interrupted" : "done";
   }

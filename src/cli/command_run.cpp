@@ -26,6 +26,7 @@ void register_run(CLI::App& app, const GlobalOptions& global, Action& action) {
       ExecuteOptions o;
       o.force_quiet = global.quiet;
       o.write_record = !global.no_record;
+      o.validate = global.validate;
       return execute_args(args, *job, o).exit_code;
     };
   });

@@ -150,7 +150,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                     {"stations", r.stations},
                     {"blocks", r.blocks.size()},
                     {"deviation_max_m", dev.max},
-                    {"deviation_mean_m", dev.mean}};
+                    {"deviation_mean_m", dev.mean},
+                    {"validated", g.validate}};
   if (hydro) record.results["hydrostatics"] = hydrostatics_summary(hydro->mesh, &hydro->nurbs);
   record_lid(lid, c.lid, record);
 

@@ -196,7 +196,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   record.results = {{"panel_size_m", r.panel_size},       {"collapses", r.collapses},
                     {"target_reached", r.target_reached}, {"quality_index_mean", r.mean_quality},
                     {"quality_index_min", r.min_quality}, {"deviation_max_m", dev.max},
-                    {"deviation_mean_m", dev.mean}};
+                    {"deviation_mean_m", dev.mean},       {"validated", g.validate}};
   if (hydro_mesh) record.results["hydrostatics"] = hydrostatics_summary(*hydro_mesh, &*hydro_nurbs);
   record_lid(lid, c.lid, record);
 

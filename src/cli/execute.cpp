@@ -58,6 +58,7 @@ ExecuteResult execute(Invocation& inv, const ExecuteOptions& options) {
   ExecuteResult result;
   if (!inv.action) return result;
   if (options.force_quiet) inv.global.quiet = true;
+  if (options.validate) inv.global.validate = true;
   RunRecord record(RunLog::mode_for(inv.global.quiet));
   if (const CLI::App* cmd = inv.command()) {
     record.command = cmd->get_name();

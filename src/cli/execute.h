@@ -26,6 +26,7 @@ std::unique_ptr<Invocation> make_invocation();
 struct ExecuteOptions {
   bool force_quiet = false;  // a batch's jobs print nothing of their own
   bool write_record = true;  // `*.run.json` beside the output (a batch writes its own)
+  bool validate = false;     // --validate for the command run, whatever its own words say
 };
 
 struct ExecuteResult {

@@ -231,11 +231,12 @@ void remove_stale_temps(const std::string& out_dir, const BatchJob& job) {
 }
 
 ordered_json run_job(const Manifest& m, const BatchJob& job, const std::string& out_dir,
-                     const ordered_json& spec) {
+                     const ordered_json& spec, bool validate) {
   remove_stale_temps(out_dir, job);
   ExecuteOptions eo;
   eo.force_quiet = true;
   eo.write_record = false;
+  eo.validate = validate;
   // The words the spec already holds (job_spec built them), so a job is expanded once.
   std::vector<std::string> words = spec["words"].get<std::vector<std::string>>();
   const std::string first = output_path(out_dir, job, job.formats.front());
@@ -376,7 +377,7 @@ BatchResult run_batch(const Manifest& m, const BatchOptions& o) {
               if (!o.rerun) rec = finished_record(o.out_dir, job, spec, hull_sha[job.hull]);
               reused = !rec.is_null();
               if (!reused && o.verbose) print_words(job, spec["words"]);
-              if (!reused) rec = run_job(m, job, o.out_dir, spec);
+              if (!reused) rec = run_job(m, job, o.out_dir, spec, o.validate);
               row = ok_row(m, job, rec, reused);
               ok = true;
             } catch (const std::exception& e) {

@@ -17,7 +17,8 @@ struct BatchOptions {
   bool sharded = false;               // --shard given: the summary is the shard's (even for 0/1)
   bool rerun = false;                 // ignore finished jobs' records and run everything again
   RunLog::Mode display = RunLog::Mode::kLines;
-  bool verbose = false;  // print each job's command line as it starts
+  bool verbose = false;   // print each job's command line as it starts
+  bool validate = false;  // --validate for every job
 };
 
 struct BatchResult {
