@@ -21,19 +21,24 @@ const std::set<std::string> kJobCommands = {"tessellate", "merge",    "unstructu
                                             "quality",    "generate", "info"};
 const std::set<std::string> kPathKeys = {"file", "output", "blocks"};
 
+// --help is no job key: a job saying "help": true would stop the parser with CLI11's own
+// "This should be caught in your main function" as the job's error.
+bool is_help(const CLI::Option* opt) {
+  const std::string name = opt->get_single_name();
+  return name == "help" || name == "h";
+}
+
 std::string key_list(const CLI::App& cmd) {
   std::string s;
   for (const CLI::Option* opt : cmd.get_options()) {
-    const std::string name = opt->get_single_name();
-    if (name == "help" || name == "h") continue;
-    s += (s.empty() ? "" : ", ") + name;
+    if (!is_help(opt)) s += (s.empty() ? "" : ", ") + opt->get_single_name();
   }
   return s;
 }
 
 const CLI::Option* find_option(const CLI::App& cmd, const std::string& key) {
   for (const CLI::Option* opt : cmd.get_options()) {
-    if (opt->get_single_name() == key) return opt;
+    if (!is_help(opt) && opt->get_single_name() == key) return opt;
   }
   return nullptr;
 }

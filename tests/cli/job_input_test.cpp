@@ -55,6 +55,18 @@ TEST(JobInput, NestingDeeperThanTheLimitIsInputError) {
   EXPECT_THROW(manifest(deep), InputError);
 }
 
+// "help" matched the command's --help flag, and the job then failed with CLI11's "This should be
+// caught in your main function" instead of naming the unknown key.
+TEST(JobInput, HelpIsAnUnknownJobKey) {
+  const json job = {{"command", "info"}, {"file", "a.igs"}, {"help", true}};
+  try {
+    job_arguments(job, "job.json", "", {});
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown key 'help'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(JobInput, ManifestFromMemoryExpandsTheGrid) {
   const Manifest m = manifest(R"({"hulls": [{"name": "a", "file": "a.igs", "draft": [1, 2]}],
                                   "grid": {"mesher": ["structured", "unstructured"]}})");
