@@ -126,12 +126,12 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
     const auto images = mirrored_edges(*mirrored, panels.vertex_count(), sm.knuckle_edges);
     knuckle_edges.insert(knuckle_edges.end(), images.begin(), images.end());
   }
+  if (g.validate && mirrored) validate_stage(c.file, "mirror", *output, {});
   QualityOptions qo;
   qo.knuckle_edges = knuckle_edges;
   qo.rules.min_triangle_angle_share = 0;
   if (ph.floating) qo.waterline_z = 0;
   const QualityReport quality = assess_quality(*output, qo);
-  if (g.validate && mirrored) validate_stage(c.file, "mirror", *output, {});
   std::optional<HydrostaticsPair> hydro;
   if (ph.floating) hydro = compare_hydrostatics(ph, *output, quality.half_hull);
   const double t_report = seconds_since(t2);

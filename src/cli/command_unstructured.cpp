@@ -165,12 +165,12 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
     const auto images = mirrored_edges(*mirrored, coarse.vertex_count(), panels_mesh.feature_edges);
     knuckle_edges.insert(knuckle_edges.end(), images.begin(), images.end());
   }
+  if (g.validate && mirrored) validate_stage(c.file, "mirror", *output, {});
   QualityOptions qo;
   qo.knuckle_edges = knuckle_edges;
   qo.rules.min_triangle_angle_share = 0;
   if (floating) qo.waterline_z = 0;
   const QualityReport quality = assess_quality(*output, qo);
-  if (g.validate && mirrored) validate_stage(c.file, "mirror", *output, {});
   // The mesh's hydrostatics against the exact NURBS at the same position: the direct measure of
   // the panels' geometric accuracy.
   std::optional<Hydrostatics> hydro_mesh, hydro_nurbs;

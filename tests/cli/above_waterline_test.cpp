@@ -47,11 +47,6 @@ Obj read_obj(const fs::path& p) {
   return o;
 }
 
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in, nullptr, false);
-}
-
 TEST(CliAboveWaterline, BothMeshersKeepTheWaterlineAsAPanelLine) {
   const fs::path dir = test::scratch_dir("cli_above_waterline");
   const fs::path igs = dir / "w.igs";
@@ -99,9 +94,9 @@ TEST(CliAboveWaterline, BothMeshersKeepTheWaterlineAsAPanelLine) {
     // The hydrostatics are the wetted part's: the same as the wetted-only mesh's to the panels'
     // accuracy, and close to the NURBS.
     const nlohmann::json hw =
-        read_json(dir / (mesher + "_wet.run.json"))["results"]["hydrostatics"];
+        test::read_json(dir / (mesher + "_wet.run.json"))["results"]["hydrostatics"];
     const nlohmann::json hd =
-        read_json(dir / (mesher + "_dry.run.json"))["results"]["hydrostatics"];
+        test::read_json(dir / (mesher + "_dry.run.json"))["results"]["hydrostatics"];
     const double v_wet = hw["volume_m3"].get<double>(), v_dry = hd["volume_m3"].get<double>();
     EXPECT_NEAR(v_dry / v_wet, 1, 0.01) << mesher;
     EXPECT_NEAR(hd["waterplane_area_m2"].get<double>() / hw["waterplane_area_m2"].get<double>(), 1,
@@ -125,7 +120,7 @@ TEST(CliAboveWaterline, BothMeshersKeepTheWaterlineAsAPanelLine) {
     const auto l = run_hullmesh("-q " + mesher + " '" + igs.string() + "' -o '" + gdf.string() +
                                 "' --panels 600 --draft 5 --above-waterline 1.5 --lid");
     ASSERT_EQ(l.exit_code, 0) << l.out;
-    const nlohmann::json rec = read_json(dir / (mesher + "_lid.run.json"));
+    const nlohmann::json rec = test::read_json(dir / (mesher + "_lid.run.json"));
     const double lid_area = rec["results"]["lid"]["area_m2"].get<double>();
     const double awp = rec["results"]["hydrostatics"]["waterplane_area_m2"].get<double>();
     EXPECT_NEAR(2 * lid_area / awp, 1.0, 1e-9) << mesher;

@@ -26,18 +26,13 @@ using test::run_hullmesh;
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return json::parse(in, nullptr, false);
-}
-
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 // Rows of a summary by id, without the columns that may differ between two runs of one sweep.
 std::map<std::string, json> comparable_rows(const fs::path& summary) {
   std::map<std::string, json> rows;
-  // Named: a range-for over read_json(...)["rows"] would walk a destroyed temporary.
-  const json s = read_json(summary);
+  // Named: a range-for over test::read_json(...)["rows"] would walk a destroyed temporary.
+  const json s = test::read_json(summary);
   for (json row : s["rows"]) {
     row.erase("seconds");
     row.erase("reused");
@@ -89,7 +84,7 @@ TEST(CliRun, JobFileRunsAndTheCommandLineOverridesIt) {
                  "panels": 200, "draft": 5, "auto_blocks": true})");
   const auto r = run_hullmesh("-q run " + q(dir / "job.json"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  const json rec = read_json(dir / "panels.run.json");
+  const json rec = test::read_json(dir / "panels.run.json");
   ASSERT_FALSE(rec.is_discarded());
   EXPECT_EQ(rec["command"], "structured");
   EXPECT_EQ(rec["parameters"]["panels"], 200);
@@ -102,7 +97,7 @@ TEST(CliRun, JobFileRunsAndTheCommandLineOverridesIt) {
   const auto o =
       run_hullmesh("-q run " + q(dir / "job.json") + " --panels 600 -o " + q(dir / "more.gdf"));
   ASSERT_EQ(o.exit_code, 0) << o.out;
-  const json more = read_json(dir / "more.run.json");
+  const json more = test::read_json(dir / "more.run.json");
   EXPECT_EQ(more["parameters"]["panels"], 600);
   EXPECT_EQ(more["input"]["sha256"], rec["input"]["sha256"]);
   EXPECT_GT(more["quality"]["panels"].get<int>(), 2 * rec["quality"]["panels"].get<int>());
@@ -143,7 +138,7 @@ TEST(CliRunRecord, MeshersRecordEveryParameterStagesAndQuality) {
   ASSERT_EQ(r.exit_code, 0) << r.out;
   // Not a terminal: each stage ends with a plain log line.
   EXPECT_NE(r.out.find("hullmesh: coarsen done in"), std::string::npos) << r.out;
-  const json rec = read_json(dir / "u.run.json");
+  const json rec = test::read_json(dir / "u.run.json");
   ASSERT_FALSE(rec.is_discarded());
   // Options not given carry their defaults.
   EXPECT_EQ(rec["parameters"]["panels"], 300);
@@ -163,12 +158,12 @@ TEST(CliRunRecord, MeshersRecordEveryParameterStagesAndQuality) {
   EXPECT_LT(std::abs(rec["results"]["hydrostatics"]["volume_error"].get<double>()), 0.02);
   // The other commands that write meshes from a hull keep records too.
   ASSERT_EQ(run_hullmesh("-q merge " + q(dir / "c.igs") + " -o " + q(dir / "m.vtu")).exit_code, 0);
-  const json merged = read_json(dir / "m.run.json");
+  const json merged = test::read_json(dir / "m.run.json");
   ASSERT_EQ(merged["outputs"].size(), 3u);  // the surface, its knuckles and its boundaries
   EXPECT_GT(merged["results"]["knuckle_lines"].get<int>(), 0);
   ASSERT_EQ(run_hullmesh("-q tessellate " + q(dir / "c.igs") + " -o " + q(dir / "t.vtu")).exit_code,
             0);
-  EXPECT_GT(read_json(dir / "t.run.json")["results"]["triangles"].get<int>(), 100);
+  EXPECT_GT(test::read_json(dir / "t.run.json")["results"]["triangles"].get<int>(), 100);
   // --no-run-json leaves the record out.
   ASSERT_EQ(run_hullmesh("-q --no-run-json structured " + q(dir / "c.igs") + " -o " +
                          q(dir / "s.gdf") + " --panels 100")
@@ -188,7 +183,7 @@ TEST(CliBatch, SweepRerunsNothingAndRedoesExactlyADeletedOutput) {
   EXPECT_NE(list.out.find("chine_structured_draft-1.8_panels-150\n"), std::string::npos);
   const auto first = run_hullmesh(cmd);
   ASSERT_EQ(first.exit_code, 0) << first.out;
-  const json s1 = read_json(out / "summary.json");
+  const json s1 = test::read_json(out / "summary.json");
   ASSERT_EQ(s1["rows"].size(), 8u);
   EXPECT_EQ(s1["ok"], 8);
   EXPECT_EQ(count_files(out, ".gdf"), 8u);
@@ -204,14 +199,14 @@ TEST(CliBatch, SweepRerunsNothingAndRedoesExactlyADeletedOutput) {
   const auto stamp = fs::last_write_time(out / "wigley_unstructured_draft-3_panels-150.gdf");
   const auto again = run_hullmesh(cmd);
   ASSERT_EQ(again.exit_code, 0) << again.out;
-  EXPECT_EQ(read_json(out / "summary.json")["reused"], 8);
+  EXPECT_EQ(test::read_json(out / "summary.json")["reused"], 8);
   EXPECT_EQ(fs::last_write_time(out / "wigley_unstructured_draft-3_panels-150.gdf"), stamp);
   EXPECT_EQ(comparable_rows(out / "summary.json"), comparable_rows(dir / "out" / "summary.json"));
 
   fs::remove(out / "chine_unstructured_draft-2.2_panels-150.obj");
   const auto redo = run_hullmesh(cmd);
   ASSERT_EQ(redo.exit_code, 0) << redo.out;
-  const json s3 = read_json(out / "summary.json");
+  const json s3 = test::read_json(out / "summary.json");
   EXPECT_EQ(s3["reused"], 7);
   for (const json& row : s3["rows"]) {
     EXPECT_EQ(row["reused"].get<bool>(), row["id"] != "chine_unstructured_draft-2.2_panels-150")
@@ -234,7 +229,7 @@ TEST(CliBatch, BrokenEntriesFailAloneWithTheirErrors) {
 })");
   const auto r = run_hullmesh("batch " + q(dir / "sweep.json") + " --out " + q(dir / "out"));
   EXPECT_EQ(r.exit_code, 8) << r.out;
-  const json s = read_json(dir / "out" / "summary.json");
+  const json s = test::read_json(dir / "out" / "summary.json");
   ASSERT_EQ(s["rows"].size(), 4u);
   EXPECT_EQ(s["ok"], 1);
   EXPECT_EQ(s["failed"], 3);
@@ -275,7 +270,7 @@ TEST(CliBatch, ShardsMergeToTheSingleMachineRunByteForByte) {
   for (const auto& e : fs::directory_iterator(dir / "one")) {
     const std::string name = e.path().filename().string();
     if (name.size() < 9 || name.substr(name.size() - 9) != ".run.json") continue;
-    const json a = read_json(e.path()), b = read_json(dir / "sharded" / name);
+    const json a = test::read_json(e.path()), b = test::read_json(dir / "sharded" / name);
     ASSERT_FALSE(b.is_discarded()) << name;
     for (std::size_t k = 0; k < a["outputs"].size(); ++k) {
       EXPECT_EQ(a["outputs"][k]["sha256"], b["outputs"][k]["sha256"]) << name;
@@ -327,7 +322,7 @@ void interrupt_and_resume(int signal_number, const std::string& name) {
     ASSERT_TRUE(WIFEXITED(status)) << log.str();
     EXPECT_EQ(WEXITSTATUS(status), 130) << log.str();
     EXPECT_EQ(count_files(out, ".tmp."), 0u);
-    const json s = read_json(out / "summary.json");
+    const json s = test::read_json(out / "summary.json");
     EXPECT_GT(s["not_run"].get<int>(), 0) << log.str();
   } else {
     ASSERT_TRUE(WIFSIGNALED(status));
@@ -337,14 +332,14 @@ void interrupt_and_resume(int signal_number, const std::string& name) {
 
   const auto resumed = run_hullmesh("-q " + cmd);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.out;
-  const json s = read_json(out / "summary.json");
+  const json s = test::read_json(out / "summary.json");
   EXPECT_EQ(s["ok"], 16);
   EXPECT_EQ(s["reused"].get<std::size_t>(), done_before);  // nothing lost
   EXPECT_EQ(count_files(out, ".tmp."), 0u);
   // Every output is the one its record names (a third run re-checks each hash).
   const auto check = run_hullmesh("-q " + cmd);
   ASSERT_EQ(check.exit_code, 0) << check.out;
-  EXPECT_EQ(read_json(out / "summary.json")["reused"], 16);
+  EXPECT_EQ(test::read_json(out / "summary.json")["reused"], 16);
 }
 
 TEST(CliBatch, SigintStopsCleanlyAndTheRestResumes) {

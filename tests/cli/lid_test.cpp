@@ -15,11 +15,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_hullmesh;
 
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in, nullptr, false);
-}
-
 nlohmann::json quality_json(const fs::path& mesh) {
   const auto r = run_hullmesh("quality --json '" + mesh.string() + "'");
   return nlohmann::json::parse(r.out, nullptr, false);
@@ -47,7 +42,7 @@ TEST(CliLid, BothMeshersCloseTheWettedHalfHull) {
     std::stringstream text;
     text << std::ifstream(lid).rdbuf();
     EXPECT_NE(text.str().find("Waterplane Mesh File"), std::string::npos);
-    const nlohmann::json record = read_json(sub / "HullMesh.run.json");
+    const nlohmann::json record = test::read_json(sub / "HullMesh.run.json");
     ASSERT_EQ(record["outputs"].size(), 2u) << mesher;
     EXPECT_EQ(fs::path(record["outputs"][1]["path"].get<std::string>()).filename(),
               "WaterplaneMesh.pnl");
@@ -71,7 +66,7 @@ TEST(CliLid, BothMeshersCloseTheWettedHalfHull) {
     ASSERT_EQ(g.exit_code, 0) << g.out;
     EXPECT_FALSE(fs::exists(sub / "body_lid.gdf"));
     const nlohmann::json qg = quality_json(gdf);
-    const nlohmann::json rec = read_json(sub / "body.run.json");
+    const nlohmann::json rec = test::read_json(sub / "body.run.json");
     const int hull_panels = rec["quality"]["panels"].get<int>();
     EXPECT_EQ(qg["faces"].get<int>(), hull_panels + rec["results"]["lid"]["panels"].get<int>());
     EXPECT_EQ(qg["topology"]["waterline_edges"], 0) << mesher;

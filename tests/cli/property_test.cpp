@@ -73,11 +73,6 @@ Case random_case(std::uint64_t seed) {
   return c;
 }
 
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in, nullptr, false);
-}
-
 // A failure line of a share rule ("...: 96.7% pass, need 98%") or the warp; every other line is
 // a hard rule.
 bool is_share_rule(const std::string& failure) {
@@ -99,7 +94,7 @@ void check_case(const Case& c, const fs::path& dir) {
          << c.panels << " --draft " << c.draft;
     const auto r = run_hullmesh(args.str());  // HULLMESH_VALIDATE=1: the invariants
     ASSERT_EQ(r.exit_code, 0) << mesher << ": " << r.out;
-    const nlohmann::json record = read_json(fs::path(out).replace_extension(".run.json"));
+    const nlohmann::json record = test::read_json(fs::path(out).replace_extension(".run.json"));
     ASSERT_TRUE(record.is_object()) << mesher;
     const nlohmann::json& quality = record["quality"];
     std::string shares;

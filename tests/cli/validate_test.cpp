@@ -17,13 +17,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in, nullptr, false);
-}
-
 bool validated(const fs::path& record) {
-  const nlohmann::json r = read_json(record);
+  const nlohmann::json r = test::read_json(record);
   return r.is_object() && r["results"]["validated"] == true;
 }
 

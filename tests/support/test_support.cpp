@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 
 namespace hm::test {
 namespace fs = std::filesystem;
@@ -37,6 +38,11 @@ fs::path scratch_dir(const std::string& test_name) {
 fs::path hullmesh_exe() {
   const char* build = std::getenv("HM_BUILD_DIR");
   return (build ? fs::path(build) : fs::path("build")) / "src" / "cli" / "hullmesh";
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in, nullptr, false);
 }
 
 RunResult run_hullmesh(const std::string& args) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace hm::test {
@@ -14,6 +15,9 @@ std::filesystem::path shared_hull(const std::string& name);
 std::filesystem::path scratch_dir(const std::string& test_name);
 // Path of the built hullmesh executable.
 std::filesystem::path hullmesh_exe();
+
+// A JSON file's value; a discarded value (is_discarded()) when it is missing or not JSON.
+nlohmann::json read_json(const std::filesystem::path& path);
 
 struct RunResult {
   int exit_code = -1;
