@@ -1,6 +1,7 @@
 // hullmesh: panel meshes of ship hulls from IGES NURBS patches.
 // The only place that catches hullmesh's typed errors and turns them into exit codes.
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -25,8 +26,12 @@ int run(int argc, char** argv) {
   const int requested = inv->global.threads;
   const std::size_t threads = requested > 0 ? static_cast<std::size_t>(requested)
                                             : std::max(1u, std::thread::hardware_concurrency());
+  // Both are needed for --threads above the core count: the limit alone caps the workers but
+  // leaves the default arena at one slot per core; an arena alone gets no more workers than the
+  // cores. With both, --threads 8 runs 8 threads on 2 cores (as the determinism tests want).
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  return execute(*inv, {}).exit_code;
+  tbb::task_arena arena(static_cast<int>(threads));
+  return arena.execute([&] { return execute(*inv, {}).exit_code; });
 }
 
 }  // namespace
