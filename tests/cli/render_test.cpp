@@ -187,19 +187,27 @@ std::array<double, 3> centroid(const ObjMesh& m, std::size_t f) {
 // A Wigley hull of two patches, meshed by the structured mesher into OBJ (patch groups kept).
 class RenderCli : public ::testing::Test {
  protected:
+  // A failed assertion in SetUpTestSuite reports the suite's tests as skipped, which ctest does
+  // not count as failures; so the suite set-up only records what went wrong and SetUp() fails.
   static void SetUpTestSuite() {
     // ctest runs each test in its own process, two at a time: one folder per process.
     dir_ = new fs::path(test::scratch_dir("cli_render_" + std::to_string(::getpid())));
+    setup_error_ = new std::string;
     const auto g = run_hullmesh(
         "-q generate wigley --patches 2 --length 100 --beam 10 --draft 6.25 "
         "--depth 8 -o '" +
         (*dir_ / "w.igs").string() + "'");
-    ASSERT_EQ(g.exit_code, 0) << g.out;
-    const auto s = run_hullmesh("-q structured '" + (*dir_ / "w.igs").string() + "' -o '" +
-                                obj().string() + "' --panels 300 --draft 6.25");
-    ASSERT_EQ(s.exit_code, 0) << s.out;
+    const auto s = g.exit_code != 0
+                       ? g
+                       : run_hullmesh("-q structured '" + (*dir_ / "w.igs").string() + "' -o '" +
+                                      obj().string() + "' --panels 300 --draft 6.25");
+    if (s.exit_code != 0) *setup_error_ = "making the test mesh failed:\n" + s.out;
   }
-  static void TearDownTestSuite() { delete dir_; }
+  static void TearDownTestSuite() {
+    delete dir_;
+    delete setup_error_;
+  }
+  void SetUp() override { ASSERT_TRUE(setup_error_->empty()) << *setup_error_; }
   static fs::path obj() { return *dir_ / "w.obj"; }
 
   // Renders the OBJ and reads the picture back; rows of the picture proper are above the legend.
@@ -211,8 +219,10 @@ class RenderCli : public ::testing::Test {
     return read_png(png);
   }
   static fs::path* dir_;
+  static std::string* setup_error_;
 };
 fs::path* RenderCli::dir_ = nullptr;
+std::string* RenderCli::setup_error_ = nullptr;
 
 void expect_coverage(const Picture& pic, const ObjMesh& m, Projection pr) {
   ASSERT_GT(pic.width, 0u);
