@@ -1,7 +1,6 @@
 // End-to-end tests of job files, run records and batches: what a user running sweeps relies on.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,8 +13,6 @@
 #include <thread>
 
 #include "support/test_support.h"
-
-extern char** environ;
 
 namespace hm {
 namespace {
@@ -283,16 +280,6 @@ TEST(CliBatch, ShardsMergeToTheSingleMachineRunByteForByte) {
   EXPECT_NE(missing.out.find("shard 0 of 2 has no summary"), std::string::npos) << missing.out;
 }
 
-// Starts `hullmesh ARGS` in the background with its output in `log`; returns its pid.
-pid_t spawn_hullmesh(const std::string& args, const fs::path& log) {
-  const std::string cmd = "exec " + q(test::hullmesh_exe()) + " " + args + " > " + q(log) + " 2>&1";
-  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
-  pid_t pid = -1;
-  if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) != 0)
-    return -1;
-  return pid;
-}
-
 void interrupt_and_resume(int signal_number, const std::string& name) {
   const fs::path dir = test::scratch_dir(name);
   // 4 hulls x 2 drafts x 2 meshers = 16 jobs of a few tenths of a second on one thread.
@@ -304,7 +291,7 @@ void interrupt_and_resume(int signal_number, const std::string& name) {
   write_text(dir / "sweep.json", manifest);
   const fs::path out = dir / "out";
   const std::string cmd = "--threads 1 batch " + q(dir / "sweep.json") + " --out " + q(out);
-  const pid_t pid = spawn_hullmesh(cmd, dir / "log.txt");
+  const pid_t pid = test::spawn_hullmesh(cmd, dir / "log.txt");
   ASSERT_GT(pid, 0);
   // Strike once the first job has finished and others are under way.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);

@@ -3,7 +3,6 @@
 // half-written one. The same holds for the run record beside it.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,8 +17,6 @@
 #include <thread>
 
 #include "support/test_support.h"
-
-extern char** environ;
 
 namespace hm {
 namespace {
@@ -38,15 +35,6 @@ std::string read_bytes(const fs::path& p) {
 
 void write_bytes(const fs::path& p, const std::string& bytes) {
   std::ofstream(p, std::ios::binary) << bytes;
-}
-
-pid_t spawn(const std::string& args) {
-  const std::string cmd = "exec " + q(test::hullmesh_exe()) + " " + args + " > /dev/null 2>&1";
-  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
-  pid_t pid = -1;
-  if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) != 0)
-    return -1;
-  return pid;
 }
 
 TEST(CliKill, AKilledMesherLeavesTheOldOutputOrTheNewOneNeverATornFile) {
@@ -75,7 +63,7 @@ TEST(CliKill, AKilledMesherLeavesTheOldOutputOrTheNewOneNeverATornFile) {
     write_bytes(out, old_mesh);
     write_bytes(record, old_record);
     const double delay = when(rng);
-    const pid_t pid = spawn(args);
+    const pid_t pid = test::spawn_hullmesh(args);
     ASSERT_GT(pid, 0);
     std::this_thread::sleep_for(std::chrono::duration<double>(delay));
     kill(pid, SIGKILL);

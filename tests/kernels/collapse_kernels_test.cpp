@@ -1,6 +1,5 @@
 // The coarsening kernels: the per-criterion qualities and the independent-set selection.
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <random>
@@ -8,6 +7,7 @@
 
 #include "kernels/collapse_cost.h"
 #include "kernels/independent_set.h"
+#include "support/test_support.h"
 
 namespace hm::kernel {
 namespace {
@@ -70,15 +70,9 @@ TEST(IndependentSet, NoTwoChosenShareAVertexAndTheBestAlwaysWins) {
   }
   std::vector<std::uint64_t> marks(vertices, 0);
   std::vector<Index> one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = select_independent(keys, offsets, region, marks);
-  }
+  one = hm::test::with_threads(1, [&] { return select_independent(keys, offsets, region, marks); });
   for (std::uint64_t m : marks) ASSERT_EQ(m, 0u);  // handed back cleared
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = select_independent(keys, offsets, region, marks);
-  }
+  two = hm::test::with_threads(8, [&] { return select_independent(keys, offsets, region, marks); });
   EXPECT_EQ(one, two);
   ASSERT_FALSE(one.empty());
   std::set<Index> used;

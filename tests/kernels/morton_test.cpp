@@ -2,11 +2,12 @@
 #include "kernels/morton.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <random>
 #include <vector>
+
+#include "support/test_support.h"
 
 namespace hm {
 namespace {
@@ -32,14 +33,8 @@ TEST(MortonOrder, IsAPermutationSortedByCodeAndThreadIndependent) {
   for (Vec3d& x : p) x = {u(rng), u(rng) * 0.1, u(rng) * 0.1};
   p[10] = p[20];  // equal codes: ties go by index
   std::vector<Index> one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = morton_order(p);
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = morton_order(p);
-  }
+  one = hm::test::with_threads(1, [&] { return morton_order(p); });
+  two = hm::test::with_threads(8, [&] { return morton_order(p); });
   EXPECT_EQ(one, two);
   std::vector<Index> sorted = one;
   std::sort(sorted.begin(), sorted.end());

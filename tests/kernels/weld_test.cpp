@@ -2,12 +2,12 @@
 #include "kernels/weld.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <random>
 #include <vector>
 
 #include "core/error.h"
+#include "support/test_support.h"
 
 namespace hm {
 namespace {
@@ -49,14 +49,8 @@ TEST(FindClosePairs, EqualsTheBruteForcePairs) {
 TEST(FindClosePairs, SameWithOneAndTwoThreads) {
   const std::vector<Vec3d> p = cloud(20000, 5);
   std::vector<ClosePair> one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = find_close_pairs(p, {}, 0.05);
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = find_close_pairs(p, {}, 0.05);
-  }
+  one = hm::test::with_threads(1, [&] { return find_close_pairs(p, {}, 0.05); });
+  two = hm::test::with_threads(8, [&] { return find_close_pairs(p, {}, 0.05); });
   ASSERT_EQ(one.size(), two.size());
   for (std::size_t i = 0; i < one.size(); ++i) {
     EXPECT_EQ(one[i].a, two[i].a);

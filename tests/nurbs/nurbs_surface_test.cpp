@@ -2,7 +2,6 @@
 #include "nurbs/nurbs_surface.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstring>
@@ -13,6 +12,7 @@
 #include "core/error.h"
 #include "nurbs/evaluate_grid.h"
 #include "nurbs_test_shapes.h"
+#include "support/test_support.h"
 
 namespace hm {
 namespace {
@@ -312,12 +312,10 @@ TEST(NurbsKernel, BatchedEqualsSinglePointBitForBit) {
 
 TEST(NurbsKernel, GridIsIdenticalForOneAndManyThreads) {
   const NurbsSurface s = test::random_bicubic(13);
-  const SurfaceSamples many = evaluate_grid(s, 120, 90, true);
-  SurfaceSamples one;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = evaluate_grid(s, 120, 90, true);
-  }
+  const SurfaceSamples many =
+      hm::test::with_threads(8, [&] { return evaluate_grid(s, 120, 90, true); });
+  const SurfaceSamples one =
+      hm::test::with_threads(1, [&] { return evaluate_grid(s, 120, 90, true); });
   ASSERT_EQ(one.positions.size(), many.positions.size());
   EXPECT_EQ(std::memcmp(one.positions.data(), many.positions.data(),
                         one.positions.size() * sizeof(Vec3d)),

@@ -1,5 +1,4 @@
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -7,6 +6,7 @@
 #include "kernels/quality_metrics.h"
 #include "mesh_builders.h"
 #include "quality/quality_report.h"
+#include "support/test_support.h"
 
 namespace hm {
 namespace {
@@ -269,14 +269,8 @@ TEST(Quality, WaveFiguresFromSpeedAndFroude) {
 TEST(Quality, IdenticalForOneAndTwoThreads) {
   const SurfaceMesh m = test::sphere_mesh(1.0, {0, 0, 0}, 48, 24);
   QualityReport r1, r2;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    r1 = assess_quality(m, {});
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    r2 = assess_quality(m, {});
-  }
+  r1 = hm::test::with_threads(1, [&] { return assess_quality(m, {}); });
+  r2 = hm::test::with_threads(8, [&] { return assess_quality(m, {}); });
   EXPECT_EQ(to_json(r1, {}), to_json(r2, {}));
   EXPECT_EQ(r1.per_face.neighbour_normal_angle, r2.per_face.neighbour_normal_angle);
   EXPECT_EQ(r1.per_face.equilateral, r2.per_face.equilateral);

@@ -1,7 +1,6 @@
 #include "query/hull_query.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <numbers>
@@ -9,6 +8,7 @@
 
 #include "core/error.h"
 #include "query_test_geometry.h"
+#include "support/test_support.h"
 
 namespace hm {
 namespace {
@@ -410,15 +410,16 @@ TEST(HullQuery, ThreadCountDoesNotChangeResults) {
   for (int i = 0; i < 300; ++i) planes.push_back({{-4.9 + 9.8 * i / 299, 0, 0}, {1, 0, 0.1}});
 
   auto run = [&](int threads) {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    std::vector<RayHit> hits(rays.size());
-    std::vector<ClosestPoint> near(points.size());
-    q.first_hits(rays, hits);
-    q.closest_points(points, near);
-    return std::make_tuple(hits, near, q.sections(planes));
+    return hm::test::with_threads(threads, [&] {
+      std::vector<RayHit> hits(rays.size());
+      std::vector<ClosestPoint> near(points.size());
+      q.first_hits(rays, hits);
+      q.closest_points(points, near);
+      return std::make_tuple(hits, near, q.sections(planes));
+    });
   };
   const auto [h1, c1, s1] = run(1);
-  const auto [h2, c2, s2] = run(2);
+  const auto [h2, c2, s2] = run(8);
   for (std::size_t i = 0; i < h1.size(); ++i) {
     ASSERT_EQ(h1[i].point, h2[i].point);
     ASSERT_EQ(c1[i].point, c2[i].point);

@@ -1,11 +1,11 @@
 #include "query/trace_view.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 
 #include "core/error.h"
+#include "support/test_support.h"
 
 namespace hm {
 namespace {
@@ -149,14 +149,8 @@ TEST(TraceView, SameHitsWithOneAndTwoThreads) {
     }
   const ViewCamera cam = fit_view_camera(m, ViewKind::kIso, 400);
   ViewHits one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = trace_view(m, cam);
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = trace_view(m, cam);
-  }
+  one = hm::test::with_threads(1, [&] { return trace_view(m, cam); });
+  two = hm::test::with_threads(8, [&] { return trace_view(m, cam); });
   EXPECT_EQ(one.face, two.face);
   ASSERT_EQ(one.point.size(), two.point.size());
   for (std::size_t s = 0; s < one.point.size(); ++s) ASSERT_EQ(one.point[s], two.point[s]) << s;

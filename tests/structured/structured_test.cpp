@@ -5,7 +5,6 @@
 #include "structured/structured.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +15,7 @@
 #include "nurbs/generate_hull.h"
 #include "quality/quality_report.h"
 #include "query/hull_query.h"
+#include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/cut_at_plane.h"
 #include "unstructured/features.h"
@@ -217,25 +217,20 @@ TEST(Structured, ChineNodesLieOnTheKnuckle) {
   EXPECT_LT(dev.max, 1e-3 * 100);
 }
 
-TEST(Structured, SameBytesWithOneAndTwoThreads) {
+TEST(Structured, SameBytesWithOneTwoAndEightThreads) {
   const auto w = wetted(HullKind::kRoundBilge, 24);
   StructuredOptions o;
   o.target_panels = 1500;
-  StructuredMesh one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = mesh(*w, o);
+  const StructuredMesh one = hm::test::with_threads(1, [&] { return mesh(*w, o); });
+  for (int threads : {2, 8}) {
+    const StructuredMesh two = hm::test::with_threads(threads, [&] { return mesh(*w, o); });
+    ASSERT_EQ(one.mesh.positions.size(), two.mesh.positions.size()) << threads;
+    ASSERT_EQ(one.mesh.faces, two.mesh.faces) << threads;
+    for (std::size_t v = 0; v < one.mesh.positions.size(); ++v) {
+      ASSERT_EQ(one.mesh.positions[v], two.mesh.positions[v]) << v << " with " << threads;
+    }
+    EXPECT_EQ(one.mesh.face_block, two.mesh.face_block) << threads;
   }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = mesh(*w, o);
-  }
-  ASSERT_EQ(one.mesh.positions.size(), two.mesh.positions.size());
-  ASSERT_EQ(one.mesh.faces, two.mesh.faces);
-  for (std::size_t v = 0; v < one.mesh.positions.size(); ++v) {
-    ASSERT_EQ(one.mesh.positions[v], two.mesh.positions[v]) << v;
-  }
-  EXPECT_EQ(one.mesh.face_block, two.mesh.face_block);
 }
 
 TEST(Structured, PanelSizesFollowTheUserBoxes) {

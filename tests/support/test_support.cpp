@@ -1,12 +1,16 @@
 #include "support/test_support.h"
 
 #include <gtest/gtest.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+
+extern char** environ;
 
 namespace hm::test {
 namespace fs = std::filesystem;
@@ -43,6 +47,17 @@ fs::path hullmesh_exe() {
 nlohmann::json read_json(const std::filesystem::path& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in, nullptr, false);
+}
+
+int spawn_hullmesh(const std::string& args, const fs::path& log) {
+  const std::string to = log.empty() ? std::string("/dev/null") : "'" + log.string() + "'";
+  const std::string cmd = "exec '" + hullmesh_exe().string() + "' " + args + " > " + to + " 2>&1";
+  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+  pid_t pid = -1;
+  if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) != 0) {
+    return -1;
+  }
+  return pid;
 }
 
 RunResult run_hullmesh(const std::string& args) {

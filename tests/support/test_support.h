@@ -1,9 +1,13 @@
 // Helpers shared by the tests: where the shared hulls are, scratch folders.
 #pragma once
 
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 namespace hm::test {
 
@@ -26,6 +30,23 @@ struct RunResult {
 // Runs `hullmesh ARGS` through the shell, capturing output, with HULLMESH_VALIDATE=1 (every
 // stage's invariants checked, as `--validate` does).
 RunResult run_hullmesh(const std::string& args);
+// Starts `hullmesh ARGS` in the background (no validation: kill and soak tests time it), its
+// stdout and stderr into `log` (/dev/null when empty). Returns the pid to wait for, or -1.
+int spawn_hullmesh(const std::string& args, const std::filesystem::path& log = {});
+
+// The thread counts the determinism tests compare: serial, CI's two cores, and more threads than
+// cores, where tasks interleave and steal in ways two threads on two cores rarely show.
+inline constexpr int kThreadCounts[] = {1, 2, 8};
+
+// f() run on exactly `threads` threads. An arena of that size with the global limit raised to
+// match: an arena alone gets no more workers than there are cores, a limit alone no more slots.
+template <class F>
+auto with_threads(int threads, F&& f) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<std::size_t>(threads));
+  tbb::task_arena arena(threads);
+  return arena.execute(std::forward<F>(f));
+}
 
 }  // namespace hm::test
 

@@ -1,6 +1,5 @@
 // Whole generated hulls of every kind and patch count.
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +11,7 @@
 
 #include "hull_checks.h"
 #include "nurbs/generate_hull.h"
+#include "support/test_support.h"
 #include "tessellate/tessellate.h"
 
 namespace hm {
@@ -112,14 +112,8 @@ TEST_P(OnePatchHullKnuckleTest, RefinedKnucklesStayOnTheirKnots) {
     lines.push_back({false, t, s.u0, s.u1});
   ASSERT_FALSE(lines.empty());
   Tessellation t, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    t = tessellate(hull.patches, {}, silent_progress());
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = tessellate(hull.patches, {}, silent_progress());
-  }
+  t = hm::test::with_threads(1, [&] { return tessellate(hull.patches, {}, silent_progress()); });
+  two = hm::test::with_threads(8, [&] { return tessellate(hull.patches, {}, silent_progress()); });
   const std::string what = to_string(spec.kind);
   EXPECT_TRUE(same_bytes(t.mesh.positions, two.mesh.positions)) << what;
   EXPECT_TRUE(same_bytes(t.mesh.vertex_uv, two.mesh.vertex_uv)) << what;

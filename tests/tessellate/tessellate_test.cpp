@@ -3,13 +3,13 @@
 #include "tessellate/tessellate.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cstring>
 #include <numbers>
 #include <vector>
 
 #include "core/error.h"
+#include "support/test_support.h"
 #include "tess_fixtures.h"
 
 namespace hm {
@@ -228,7 +228,7 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-TEST(Tessellate, OneAndTwoThreadsGiveIdenticalArrays) {
+TEST(Tessellate, OneTwoAndEightThreadsGiveIdenticalArrays) {
   Patch holed = test::flat_square(1.0);
   holed.loops.push_back(test::circle_loop({0.4, 0.6}, 0.2, false));
   std::vector<Patch> patches;
@@ -240,22 +240,18 @@ TEST(Tessellate, OneAndTwoThreadsGiveIdenticalArrays) {
   TessellateOptions o;
   o.edge_length = 0.05;  // large patches too, so that their inner loops run in parallel
   o.chord_tolerance = 1e-4;
-  Tessellation one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = run(patches, o);
-  }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = run(patches, o);
-  }
+  const Tessellation one = hm::test::with_threads(1, [&] { return run(patches, o); });
   ASSERT_GT(one.mesh.face_count(), 10000u);
-  EXPECT_TRUE(same_bytes(one.mesh.positions, two.mesh.positions));
-  EXPECT_TRUE(same_bytes(one.mesh.vertex_uv, two.mesh.vertex_uv));
-  EXPECT_TRUE(same_bytes(one.mesh.vertex_patch, two.mesh.vertex_patch));
-  EXPECT_TRUE(same_bytes(one.mesh.faces, two.mesh.faces));
-  EXPECT_TRUE(same_bytes(one.mesh.face_patch, two.mesh.face_patch));
-  EXPECT_TRUE(same_bytes(one.chord_error, two.chord_error));
+  for (int threads : {2, 8}) {
+    SCOPED_TRACE(threads);
+    const Tessellation two = hm::test::with_threads(threads, [&] { return run(patches, o); });
+    EXPECT_TRUE(same_bytes(one.mesh.positions, two.mesh.positions));
+    EXPECT_TRUE(same_bytes(one.mesh.vertex_uv, two.mesh.vertex_uv));
+    EXPECT_TRUE(same_bytes(one.mesh.vertex_patch, two.mesh.vertex_patch));
+    EXPECT_TRUE(same_bytes(one.mesh.faces, two.mesh.faces));
+    EXPECT_TRUE(same_bytes(one.mesh.face_patch, two.mesh.face_patch));
+    EXPECT_TRUE(same_bytes(one.chord_error, two.chord_error));
+  }
 }
 
 TEST(Tessellate, DefaultsFollowTheHullSize) {

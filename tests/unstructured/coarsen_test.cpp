@@ -4,7 +4,6 @@
 #include "unstructured/coarsen.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -157,23 +156,18 @@ TEST(Coarsen, RoundBilgeHullReachesTheTargetWithGoodPanels) {
   EXPECT_GT(c.report.collapses, 10'000u);
 }
 
-TEST(Coarsen, SameBytesWithOneAndTwoThreads) {
+TEST(Coarsen, SameBytesWithOneTwoAndEightThreads) {
   const Fine f = generated(HullKind::kRoundBilge, 6, 20'000);
   CoarsenOptions o;
   o.target_panels = 800;
-  CoarsenedMesh one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = coarsen_of(f, o);
+  const CoarsenedMesh one = hm::test::with_threads(1, [&] { return coarsen_of(f, o); });
+  for (int threads : {2, 8}) {
+    const CoarsenedMesh two = hm::test::with_threads(threads, [&] { return coarsen_of(f, o); });
+    ASSERT_EQ(one.mesh.face_count(), two.mesh.face_count()) << threads;
+    EXPECT_EQ(one.mesh.faces, two.mesh.faces) << threads;
+    EXPECT_EQ(one.mesh.positions, two.mesh.positions) << threads;
+    EXPECT_EQ(one.vert_new2old, two.vert_new2old) << threads;
   }
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = coarsen_of(f, o);
-  }
-  ASSERT_EQ(one.mesh.face_count(), two.mesh.face_count());
-  EXPECT_EQ(one.mesh.faces, two.mesh.faces);
-  EXPECT_EQ(one.mesh.positions, two.mesh.positions);
-  EXPECT_EQ(one.vert_new2old, two.vert_new2old);
 }
 
 TEST(Coarsen, BatchedMatchesTheSerialPriorityQueue) {

@@ -4,7 +4,6 @@
 #include "unstructured/cut_at_plane.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
 #include "quality/hydrostatics.h"
+#include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/merge.h"
 
@@ -183,19 +183,14 @@ TEST(CutAtPlane, KeepBothSplitsTheSurfaceAlongTheWaterlineAndDropsNothing) {
   EXPECT_GT(waterline_edges, 50u);
 }
 
-TEST(CutAtPlane, SameArraysWithOneAndTwoThreads) {
-  Cut one, two;
-  {
-    tbb::global_control g(tbb::global_control::max_allowed_parallelism, 1);
-    one = cut_wigley(3.3, 12);
+TEST(CutAtPlane, SameArraysWithOneTwoAndEightThreads) {
+  const Cut one = hm::test::with_threads(1, [] { return cut_wigley(3.3, 12); });
+  for (int threads : {2, 8}) {
+    const Cut two = hm::test::with_threads(threads, [] { return cut_wigley(3.3, 12); });
+    EXPECT_EQ(one.cut.mesh.positions, two.cut.mesh.positions) << threads;
+    EXPECT_EQ(one.cut.mesh.faces, two.cut.mesh.faces) << threads;
+    EXPECT_EQ(one.cut.mesh.vertex_uv, two.cut.mesh.vertex_uv) << threads;
   }
-  {
-    tbb::global_control g(tbb::global_control::max_allowed_parallelism, 2);
-    two = cut_wigley(3.3, 12);
-  }
-  EXPECT_EQ(one.cut.mesh.positions, two.cut.mesh.positions);
-  EXPECT_EQ(one.cut.mesh.faces, two.cut.mesh.faces);
-  EXPECT_EQ(one.cut.mesh.vertex_uv, two.cut.mesh.vertex_uv);
 }
 
 // A full Wigley hull's halves meet at y = 0 (keel, stem and stern lie in the centre plane), so the

@@ -4,7 +4,6 @@
 #include "unstructured/features.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "core/error.h"
 #include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
+#include "support/test_support.h"
 #include "tessellate/tessellate.h"
 
 namespace hm {
@@ -410,15 +410,7 @@ TEST(Features, CornersWhereKnucklesMeetBoundariesAndEachOther) {
   for (Index c : f.corners) EXPECT_EQ(f.vertex_feature[c], VertexFeature::kCorner);
 }
 
-TEST(Features, SameResultWithOneAndTwoThreads) {
-  const Hull& h = hull(HullKind::kChine);
-  FeatureOptions o;
-  o.knuckle_angle_deg = 4;  // many candidates, so the NURBS check runs in parallel
-  const auto run = [&](int threads) {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return features(h, o);
-  };
-  const FeatureSet a = run(1), b = run(2);
+void expect_same_features(const FeatureSet& a, const FeatureSet& b) {
   EXPECT_EQ(a.edge_knuckle, b.edge_knuckle);
   EXPECT_EQ(a.corners, b.corners);
   EXPECT_EQ(a.candidates_rejected_by_nurbs, b.candidates_rejected_by_nurbs);
@@ -431,6 +423,20 @@ TEST(Features, SameResultWithOneAndTwoThreads) {
   for (std::size_t i = 0; i < a.boundaries.size(); ++i) {
     EXPECT_EQ(a.boundaries[i].vertices, b.boundaries[i].vertices);
     EXPECT_EQ(a.boundaries[i].kind, b.boundaries[i].kind);
+  }
+}
+
+TEST(Features, SameResultWithOneTwoAndEightThreads) {
+  const Hull& h = hull(HullKind::kChine);
+  FeatureOptions o;
+  o.knuckle_angle_deg = 4;  // many candidates, so the NURBS check runs in parallel
+  const auto run = [&](int threads) {
+    return hm::test::with_threads(threads, [&] { return features(h, o); });
+  };
+  const FeatureSet a = run(1);
+  for (int threads : {2, 8}) {
+    SCOPED_TRACE(threads);
+    expect_same_features(a, run(threads));
   }
 }
 

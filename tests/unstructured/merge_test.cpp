@@ -3,7 +3,6 @@
 #include "unstructured/merge.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <string>
@@ -175,28 +174,24 @@ TEST(Merge, PairwiseOverlapIsCutAway) {
               total_area(m.merged.mesh), 2e-3 * total_area(m.merged.mesh));
 }
 
-TEST(Merge, SameBytesWithOneAndTwoThreads) {
+TEST(Merge, SameBytesWithOneTwoAndEightThreads) {
   HullDefects d;
   d.gap = 0.05;
   const std::vector<Patch> patches = generated(HullKind::kRoundBilge, 24, d).patches;
-  MergedSurface one, two;
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    one = merge_of(patches).merged;
+  const MergedSurface one = hm::test::with_threads(1, [&] { return merge_of(patches).merged; });
+  for (int threads : {2, 8}) {
+    const MergedSurface two =
+        hm::test::with_threads(threads, [&] { return merge_of(patches).merged; });
+    ASSERT_EQ(one.mesh.vertex_count(), two.mesh.vertex_count()) << threads;
+    ASSERT_EQ(one.mesh.faces, two.mesh.faces) << threads;
+    for (std::size_t v = 0; v < one.mesh.vertex_count(); ++v) {
+      ASSERT_EQ(one.mesh.positions[v].x, two.mesh.positions[v].x) << threads;
+      ASSERT_EQ(one.mesh.positions[v].y, two.mesh.positions[v].y) << threads;
+      ASSERT_EQ(one.mesh.positions[v].z, two.mesh.positions[v].z) << threads;
+    }
+    EXPECT_EQ(one.vert_new2old, two.vert_new2old) << threads;
+    EXPECT_EQ(one.face_new2old, two.face_new2old) << threads;
   }
-  {
-    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-    two = merge_of(patches).merged;
-  }
-  ASSERT_EQ(one.mesh.vertex_count(), two.mesh.vertex_count());
-  ASSERT_EQ(one.mesh.faces, two.mesh.faces);
-  for (std::size_t v = 0; v < one.mesh.vertex_count(); ++v) {
-    ASSERT_EQ(one.mesh.positions[v].x, two.mesh.positions[v].x);
-    ASSERT_EQ(one.mesh.positions[v].y, two.mesh.positions[v].y);
-    ASSERT_EQ(one.mesh.positions[v].z, two.mesh.positions[v].z);
-  }
-  EXPECT_EQ(one.vert_new2old, two.vert_new2old);
-  EXPECT_EQ(one.face_new2old, two.face_new2old);
 }
 
 TEST(Merge, ChineKnucklesAreFoundAcrossPatchBorders) {
