@@ -69,10 +69,11 @@ TEST(IndependentSet, NoTwoChosenShareAVertexAndTheBestAlwaysWins) {
     keys.push_back(priority_key(pr(rng), static_cast<Index>(i)));
   }
   std::vector<std::uint64_t> marks(vertices, 0);
-  std::vector<Index> one, two;
-  one = hm::test::with_threads(1, [&] { return select_independent(keys, offsets, region, marks); });
+  const std::vector<Index> one =
+      hm::test::with_threads(1, [&] { return select_independent(keys, offsets, region, marks); });
   for (std::uint64_t m : marks) ASSERT_EQ(m, 0u);  // handed back cleared
-  two = hm::test::with_threads(8, [&] { return select_independent(keys, offsets, region, marks); });
+  const std::vector<Index> two =
+      hm::test::with_threads(8, [&] { return select_independent(keys, offsets, region, marks); });
   EXPECT_EQ(one, two);
   ASSERT_FALSE(one.empty());
   std::set<Index> used;

@@ -32,9 +32,8 @@ TEST(MortonOrder, IsAPermutationSortedByCodeAndThreadIndependent) {
   std::vector<Vec3d> p(50000);
   for (Vec3d& x : p) x = {u(rng), u(rng) * 0.1, u(rng) * 0.1};
   p[10] = p[20];  // equal codes: ties go by index
-  std::vector<Index> one, two;
-  one = hm::test::with_threads(1, [&] { return morton_order(p); });
-  two = hm::test::with_threads(8, [&] { return morton_order(p); });
+  const std::vector<Index> one = hm::test::with_threads(1, [&] { return morton_order(p); });
+  const std::vector<Index> two = hm::test::with_threads(8, [&] { return morton_order(p); });
   EXPECT_EQ(one, two);
   std::vector<Index> sorted = one;
   std::sort(sorted.begin(), sorted.end());

@@ -46,11 +46,12 @@ TEST(FindClosePairs, EqualsTheBruteForcePairs) {
   }
 }
 
-TEST(FindClosePairs, SameWithOneAndTwoThreads) {
+TEST(FindClosePairs, SameWithOneAndEightThreads) {
   const std::vector<Vec3d> p = cloud(20000, 5);
-  std::vector<ClosePair> one, two;
-  one = hm::test::with_threads(1, [&] { return find_close_pairs(p, {}, 0.05); });
-  two = hm::test::with_threads(8, [&] { return find_close_pairs(p, {}, 0.05); });
+  const std::vector<ClosePair> one =
+      hm::test::with_threads(1, [&] { return find_close_pairs(p, {}, 0.05); });
+  const std::vector<ClosePair> two =
+      hm::test::with_threads(8, [&] { return find_close_pairs(p, {}, 0.05); });
   ASSERT_EQ(one.size(), two.size());
   for (std::size_t i = 0; i < one.size(); ++i) {
     EXPECT_EQ(one[i].a, two[i].a);

@@ -148,9 +148,8 @@ TEST(TraceView, SameHitsWithOneAndTwoThreads) {
       m.face_patch.push_back(0);
     }
   const ViewCamera cam = fit_view_camera(m, ViewKind::kIso, 400);
-  ViewHits one, two;
-  one = hm::test::with_threads(1, [&] { return trace_view(m, cam); });
-  two = hm::test::with_threads(8, [&] { return trace_view(m, cam); });
+  const ViewHits one = hm::test::with_threads(1, [&] { return trace_view(m, cam); });
+  const ViewHits two = hm::test::with_threads(8, [&] { return trace_view(m, cam); });
   EXPECT_EQ(one.face, two.face);
   ASSERT_EQ(one.point.size(), two.point.size());
   for (std::size_t s = 0; s < one.point.size(); ++s) ASSERT_EQ(one.point[s], two.point[s]) << s;

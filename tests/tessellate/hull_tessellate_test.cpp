@@ -111,9 +111,10 @@ TEST_P(OnePatchHullKnuckleTest, RefinedKnucklesStayOnTheirKnots) {
   for (double t : crease_knots(s.knots_v, s.degree_v, s.v0, s.v1))
     lines.push_back({false, t, s.u0, s.u1});
   ASSERT_FALSE(lines.empty());
-  Tessellation t, two;
-  t = hm::test::with_threads(1, [&] { return tessellate(hull.patches, {}, silent_progress()); });
-  two = hm::test::with_threads(8, [&] { return tessellate(hull.patches, {}, silent_progress()); });
+  const Tessellation t =
+      hm::test::with_threads(1, [&] { return tessellate(hull.patches, {}, silent_progress()); });
+  const Tessellation two =
+      hm::test::with_threads(8, [&] { return tessellate(hull.patches, {}, silent_progress()); });
   const std::string what = to_string(spec.kind);
   EXPECT_TRUE(same_bytes(t.mesh.positions, two.mesh.positions)) << what;
   EXPECT_TRUE(same_bytes(t.mesh.vertex_uv, two.mesh.vertex_uv)) << what;
