@@ -1,6 +1,8 @@
 #include "cli/execute.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <regex>
 
 #include "cli/run_record.h"
@@ -8,6 +10,24 @@
 #include "core/error.h"
 
 namespace hm::cli {
+namespace {
+
+// CLI11 reads "nan" and "inf" as doubles, and ranges like POSITIVE let them through; no length,
+// draft or angle of ours may be either. Called once the command line is parsed.
+void require_finite_numbers(const CLI::App& cmd) {
+  for (const CLI::Option* opt : cmd.get_options()) {
+    if (opt->get_type_name().rfind("FLOAT", 0) != 0) continue;
+    for (const std::string& word : opt->results()) {
+      char* end = nullptr;
+      const double x = std::strtod(word.c_str(), &end);
+      if (end != word.c_str() && *end == '\0' && !std::isfinite(x)) {
+        throw CLI::ValidationError(opt->get_name(), "'" + word + "' is not a finite number");
+      }
+    }
+  }
+}
+
+}  // namespace
 
 const CLI::App* Invocation::command() const {
   const auto parsed = app->get_subcommands();
@@ -38,6 +58,9 @@ std::unique_ptr<Invocation> make_invocation() {
                "Check the mesh invariants between stages (manifold, oriented, no zero-area "
                "panels, deviation bound, feature lines kept); exit 1 naming a stage that breaks "
                "one (default on when HULLMESH_VALIDATE is set)");
+  app.parse_complete_callback([&app] {
+    for (const CLI::App* cmd : app.get_subcommands()) require_finite_numbers(*cmd);
+  });
   Action& action = inv->action;
   register_info(app, global, action);
   register_generate(app, global, action);
