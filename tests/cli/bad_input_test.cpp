@@ -13,7 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace test = hm::test;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+using test::q;
 
 struct BadCase {
   const char* what;

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using test::run_hullmesh;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+using test::q;
 
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 

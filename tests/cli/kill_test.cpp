@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_hullmesh;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+using test::q;
 
 std::string read_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

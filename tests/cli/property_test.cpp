@@ -26,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_hullmesh;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+using test::q;
 
 struct Case {
   std::uint64_t seed = 0;

@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace test = hm::test;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+using test::q;
 
 // Resident set of a process in KiB, or -1 once it has gone.
 long resident_kib(int pid) {

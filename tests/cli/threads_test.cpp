@@ -18,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace test = hm::test;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+using test::q;
 
 // The file's bytes; for IGES, without the global section, which names the file itself.
 std::string read_bytes(const fs::path& p) {

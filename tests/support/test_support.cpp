@@ -50,8 +50,8 @@ nlohmann::json read_json(const std::filesystem::path& path) {
 }
 
 int spawn_hullmesh(const std::string& args, const fs::path& log) {
-  const std::string to = log.empty() ? std::string("/dev/null") : "'" + log.string() + "'";
-  const std::string cmd = "exec '" + hullmesh_exe().string() + "' " + args + " > " + to + " 2>&1";
+  const std::string to = log.empty() ? std::string("/dev/null") : q(log);
+  const std::string cmd = "exec " + q(hullmesh_exe()) + " " + args + " > " + to + " 2>&1";
   const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
   pid_t pid = -1;
   if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) != 0) {

@@ -23,6 +23,9 @@ std::filesystem::path hullmesh_exe();
 // A JSON file's value; a discarded value (is_discarded()) when it is missing or not JSON.
 nlohmann::json read_json(const std::filesystem::path& path);
 
+// A path quoted for the shell that run_hullmesh and spawn_hullmesh go through.
+inline std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
 struct RunResult {
   int exit_code = -1;
   std::string out;  // stdout and stderr, interleaved
