@@ -1,5 +1,6 @@
 // The IGES import driver: parse -> orientations -> which entities become patches -> convert
-// (in parallel, one slot per patch) -> names and groups -> units -> skipped counts.
+// (in parallel, one slot per patch) -> names and groups -> units -> collapsed patches left out ->
+// skipped counts.
 #include "iges/read_iges.h"
 
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "core/parallel.h"
 #include "iges/convert_surfaces.h"
 #include "iges/convert_trims.h"
+#include "iges/find_collapsed.h"
 #include "iges/iges_context.h"
 #include "iges/iges_model.h"
 #include "iges/transforms.h"
@@ -230,6 +232,35 @@ std::string skipped_summary(const std::map<int, int>& skipped) {
   return std::to_string(total) + " entities carry no hull surface and were skipped (" + list + ")";
 }
 
+// Leaves out the patches whose surface collapses to a point or a line, each reported as an error
+// on its entity (the wrapper's, when wrapped). Keeps extents and patch_job in step with patches.
+void drop_collapsed(const Context& ctx, std::vector<PatchExtent>& extents,
+                    std::vector<int>& patch_job, std::vector<std::uint8_t>& failed,
+                    ImportResult& r) {
+  const std::vector<std::string> why = iges::find_collapsed(extents);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < why.size(); ++i) {
+    if (why[i].empty()) {
+      if (kept != i) {
+        r.patches[kept] = std::move(r.patches[i]);
+        extents[kept] = extents[i];
+        patch_job[kept] = patch_job[i];
+      }
+      ++kept;
+      continue;
+    }
+    const iges::DirEntry& e = ctx.entry(patch_job[i]);
+    const int surface_de = r.patches[i].de;
+    const std::string which =
+        surface_de != e.de ? " (surface DE " + std::to_string(surface_de) + ")" : "";
+    r.diagnostics.add(Severity::kError, e.de, e.param_line, e.type, why[i] + which + "; skipped");
+    failed[static_cast<std::size_t>(patch_job[i])] = 1;
+  }
+  r.patches.resize(kept);
+  extents.resize(kept);
+  patch_job.resize(kept);
+}
+
 [[noreturn]] void no_surface(const std::string& source, const ImportResult& r) {
   std::string why;
   for (const Diagnostic& d : r.diagnostics.items()) {
@@ -288,9 +319,13 @@ ImportResult read_iges(std::string_view text, const std::string& source,
       },
       8);
   std::vector<std::uint8_t> failed(model.size(), 0);
+  std::vector<int> patch_job;  // per patch: the entity index of its job
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     r.diagnostics.append(results[k].diags);
-    if (results[k].patch) r.patches.push_back(std::move(*results[k].patch));
+    if (results[k].patch) {
+      r.patches.push_back(std::move(*results[k].patch));
+      patch_job.push_back(jobs[k]);
+    }
     if (results[k].failed) failed[static_cast<std::size_t>(jobs[k])] = 1;
   }
   r.groups = read_groups(ctx, r.diagnostics);
@@ -309,10 +344,12 @@ ImportResult read_iges(std::string_view text, const std::string& source,
   }
   // The box of the surfaces themselves: a control net overshoots a curved patch (and the unit
   // check above only needs its order of magnitude).
-  std::vector<BBox3d> boxes(r.patches.size());
+  std::vector<PatchExtent> extents(r.patches.size());
   parallel_for_each_item(r.patches.size(),
-                         [&](std::size_t i) { boxes[i] = patch_bbox(r.patches[i]); });
-  for (const BBox3d& b : boxes) r.bbox.add(b);
+                         [&](std::size_t i) { extents[i] = patch_extent(r.patches[i]); });
+  drop_collapsed(ctx, extents, patch_job, failed, r);
+  if (r.patches.empty()) no_surface(source, r);
+  for (const PatchExtent& e : extents) r.bbox.add(e.box);
 
   mark_transforms(ctx);
   for (std::size_t i = 0; i < model.size(); ++i) {

@@ -405,7 +405,7 @@ double patch_area(const Patch& p) {
   return integrator.trimmed(domain, std::move(polys), 0.0, 0);
 }
 
-BBox3d patch_bbox(const Patch& p) {
+PatchExtent patch_extent(const Patch& p) {
   const NurbsSurface& s = p.surface;
   // Fewer samples per span on huge nets, so the cost stays bounded (at most ~4k per direction).
   auto params = [](const std::vector<double>& breaks) {
@@ -420,9 +420,22 @@ BBox3d patch_bbox(const Patch& p) {
     return t;
   };
   const std::vector<double> us = params(span_breaks_u(s)), vs = params(span_breaks_v(s));
-  BBox3d box;
-  for (const Vec3d& q : evaluate_grid(s, us, vs).positions) box.add(q);
-  return box;
+  const std::vector<Vec3d> q = evaluate_grid(s, us, vs).positions;
+  PatchExtent out;
+  for (const Vec3d& x : q) out.box.add(x);
+  const std::size_t nu = us.size();
+  for (std::size_t j = 0; j + 1 < vs.size(); ++j) {
+    for (std::size_t i = 0; i + 1 < nu; ++i) {
+      const Vec3d& a = q[i + nu * j];
+      const Vec3d& b = q[i + 1 + nu * j];
+      const Vec3d& c = q[i + 1 + nu * (j + 1)];
+      const Vec3d& d = q[i + nu * (j + 1)];
+      out.grid_area += 0.5 * (norm(cross(b - a, c - a)) + norm(cross(c - a, d - a)));
+    }
+  }
+  return out;
 }
+
+BBox3d patch_bbox(const Patch& p) { return patch_extent(p).box; }
 
 }  // namespace hm

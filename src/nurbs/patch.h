@@ -54,4 +54,13 @@ double patch_area(const Patch& p);
 // which a curved patch overshoots (a Wigley's net reaches twice its beam).
 BBox3d patch_bbox(const Patch& p);
 
+// The box above and, from the same samples, the area of the untrimmed surface as the sum of the
+// sample grid's triangles (m^2): a cheap lower estimate, zero when the surface collapses to a line
+// or a point, whatever its parametrisation.
+struct PatchExtent {
+  BBox3d box;
+  double grid_area = 0;
+};
+PatchExtent patch_extent(const Patch& p);
+
 }  // namespace hm

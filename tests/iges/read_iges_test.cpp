@@ -364,6 +364,49 @@ TEST(IgesBadInput, DegreeLargerThanControlNet) {
                           {"DE 1", "degree larger than the control net"});
 }
 
+// A patch whose control points coincide, and one whose control points lie on one line: neither
+// has area. Each is left out with an error naming its entity; the good patch imports.
+TEST(IgesBadInput, PatchesCollapsedToAPointOrALineAreLeftOutByEntity) {
+  test::Surface128 point = test::square(0, 0, 1);
+  point.points.assign(4, Vec3d{3, 2, 1});
+  test::Surface128 line = test::square(0, 0, 1);
+  line.points = {{0, 0, 0}, {1, 0, 0}, {0, 0, 0}, {2, 0, 0}};
+  IgesTextBuilder b;
+  b.add(128, test::square(0, 0, 1).params());
+  const int p_de = b.add(128, point.params());
+  const int l_de = b.add(128, line.params());
+  const ImportResult r = read_iges(b.build(), "collapsed.igs");
+  ASSERT_EQ(r.patches.size(), 1u);
+  EXPECT_EQ(r.patches[0].de, 1);
+  EXPECT_EQ(r.skipped_by_type.at(128), 2);
+  EXPECT_DOUBLE_EQ(r.bbox.extent().x, 1.0) << "the box is the good patch's";
+  int found = 0;
+  for (const Diagnostic& d : r.diagnostics.items()) {
+    if (d.severity != Severity::kError) continue;
+    if (d.de == p_de) {
+      EXPECT_NE(d.message.find("collapses to a point"), std::string::npos) << d.message;
+      ++found;
+    }
+    if (d.de == l_de) {
+      EXPECT_NE(d.message.find("collapses to a line"), std::string::npos) << d.message;
+      ++found;
+    }
+    EXPECT_GT(d.line, 0) << "the parameter line is named";
+  }
+  EXPECT_EQ(found, 2);
+}
+
+TEST(IgesBadInput, AFileOfOnlyCollapsedPatchesHasNoReadableSurface) {
+  test::Surface128 point = test::square(0, 0, 1);
+  point.points.assign(4, Vec3d{0, 0, 0});
+  expect_error<IgesError>([&] { read_iges(one_surface(point), "pt.igs"); },
+                          {"pt.igs", "no readable surface", "DE 1", "collapses to a point"});
+  test::Surface128 line = test::square(0, 0, 1);
+  line.points = {{0, 0, 0}, {0, 0, 5}, {0, 0, 1}, {0, 0, 7}};
+  expect_error<IgesError>([&] { read_iges(one_surface(line), "ln.igs"); },
+                          {"ln.igs", "DE 1", "collapses to a line"});
+}
+
 TEST(IgesBadInput, DeclaredTrillionControlPointsIsALimitErrorBeforeAllocation) {
   IgesTextBuilder b;
   b.add(128, {"999999", "999999", "3", "3", "0", "0", "1", "0", "0", "0.", "0.", "1."});
