@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/load_hull.h"
 #include "core/error.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
@@ -52,6 +53,9 @@ int run_quality(const QualityCliOptions& o, const GlobalOptions& g) {
   q.waves.speed = o.speed;
   q.waves.froude = o.froude;
   q.waves.length = o.length;
+  const SelfIntersections crossings = measure_crossings(file.mesh);
+  q.crossing_pairs = crossings.count;
+  if (crossings.count > 0) q.crossing_where = crossings.first.front().where;
   const QualityReport report = assess_quality(file.mesh, q);
   FloatingPosition position;
   position.waterline_z = report.topology.waterline_z;

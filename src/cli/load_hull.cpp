@@ -1,11 +1,13 @@
 #include "cli/load_hull.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
+#include "core/bbox.h"
 #include "core/error.h"
 
 namespace hm::cli {
@@ -31,6 +33,43 @@ void check_merged_manifold(const std::string& file, const SurfaceMesh& mesh,
                       std::to_string(adjacency.nonmanifold_edges.size()) +
                       " edges with more than two faces (the first near x " + std::to_string(p.x) +
                       ", y " + std::to_string(p.y) + ", z " + std::to_string(p.z) + " m); " + hint);
+}
+
+namespace {
+
+std::string describe_patch(std::span<const Patch> patches, PatchId p) {
+  if (p >= patches.size()) return "patch " + std::to_string(p);
+  const Patch& patch = patches[p];
+  std::string s = "patch " + std::to_string(p);
+  if (!patch.name.empty()) s += " '" + patch.name + "'";
+  if (patch.de > 0) s += " (DE " + std::to_string(patch.de) + ")";
+  return s;
+}
+
+}  // namespace
+
+SelfIntersections measure_crossings(const SurfaceMesh& mesh) {
+  BBox3d box;
+  for (const Vec3d& p : mesh.positions) box.add(p);
+  const Vec3d e = box.extent();
+  return find_self_intersections(mesh, 1e-7 * std::max({e.x, e.y, e.z}), 1);
+}
+
+std::string describe_crossings(const std::string& file, std::span<const Patch> patches,
+                               const SurfaceMesh& mesh, const SelfIntersections& s,
+                               const std::string& what) {
+  if (s.count == 0 || s.first.empty()) return {};
+  const FaceCrossing& c = s.first.front();
+  const PatchId pa = c.face_a < mesh.face_patch.size() ? mesh.face_patch[c.face_a] : kInvalid;
+  const PatchId pb = c.face_b < mesh.face_patch.size() ? mesh.face_patch[c.face_b] : kInvalid;
+  const std::string who = pa == pb
+                              ? "faces of " + describe_patch(patches, pa)
+                              : describe_patch(patches, pa) + " and " + describe_patch(patches, pb);
+  char where[96];
+  std::snprintf(where, sizeof where, "x %.4g, y %.4g, z %.4g m", c.where.x, c.where.y, c.where.z);
+  return file + ": " + what + " passes through itself: " + std::to_string(s.count) +
+         (s.count == 1 ? " pair of faces crosses" : " pairs of faces cross") + ", the first of " +
+         who + " near " + where;
 }
 
 std::vector<double> parse_numbers(const std::string& text, std::size_t count,

@@ -193,6 +193,13 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   const SurfaceMesh& fine = out.fine();
   check_merged_manifold(args.file, fine, out.adjacency,
                         "`hullmesh merge` writes the surface for inspection");
+  // Two patches through each other (an appendage left untrimmed), or a fold the merge left. The
+  // meshers check their panels for the same before writing; here the fine faces name the patches.
+  const std::string crossings =
+      describe_crossings(args.file, patches, fine, measure_crossings(fine), "the merged surface");
+  if (!crossings.empty() && !args.quiet) {
+    std::fprintf(stderr, "hullmesh: warning: %s\n", crossings.c_str());
+  }
   // What the meshers are given: a merge fault in a part a cut takes away is not passed on.
   if (args.validate) {
     const bool cut = out.top_cut || out.waterplane_cut || out.centre_cut;

@@ -85,7 +85,8 @@ ordered_json quality_summary(const QualityReport& r, const QualityRules& rules) 
           {"boundary_loops", t.boundary_loops},
           {"free_edges_below_waterline", t.free_edges_below},
           {"nonmanifold_edges", t.nonmanifold_edges},
-          {"orientation_consistent", t.orientation_consistent}};
+          {"orientation_consistent", t.orientation_consistent},
+          {"crossing_pairs", r.crossing_pairs ? ordered_json(*r.crossing_pairs) : nullptr}};
 }
 
 ordered_json hydrostatics_summary(const Hydrostatics& mesh, const Hydrostatics* exact) {

@@ -132,6 +132,8 @@ QualityReport assess_quality(const SurfaceMesh& mesh, const QualityOptions& o) {
   r.normal_angle_share = shares.normal_angle;
   r.triangle_angle_share = shares.triangle_angle;
   r.worst = worst_panels(r, o, free_face, nonmanifold_face);
+  r.crossing_pairs = o.crossing_pairs;
+  r.crossing_where = o.crossing_where;
   return r;
 }
 
@@ -156,6 +158,11 @@ std::vector<std::string> QualityReport::failures(const QualityRules& rules) cons
   count(rules.require_no_zero_area, zero_area, "zero-area panels");
   count(rules.require_no_close_centres, close_centre_pairs, "pairs of very close panel centres");
   count(rules.require_manifold, topology.nonmanifold_edges, "non-manifold edges");
+  if (rules.require_no_crossing && crossing_pairs.value_or(0) > 0) {
+    out.push_back(fmt("%zu pairs of panels pass through each other (the first near x %.4g, y %.4g",
+                      *crossing_pairs, crossing_where.x, crossing_where.y) +
+                  fmt(", z %.4g m)", crossing_where.z));
+  }
   count(rules.require_consistent_orientation, topology.inconsistent_edges,
         "edges with inconsistent orientation");
   count(rules.require_no_free_edges_below_waterline, topology.free_edges_below,

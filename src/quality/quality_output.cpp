@@ -56,6 +56,8 @@ std::string to_json(const QualityReport& r, const QualityRules& rules, int inden
   j["non_convex"] = r.non_convex;
   j["zero_area"] = r.zero_area;
   j["close_centre_pairs"] = r.close_centre_pairs;
+  // null when not measured
+  j["crossing_pairs"] = r.crossing_pairs ? json(*r.crossing_pairs) : json(nullptr);
   const TopologyFacts& t = r.topology;
   j["topology"] = {{"edges", t.edges},
                    {"boundary_edges", t.boundary_edges},
@@ -123,6 +125,12 @@ std::string format_table(const QualityReport& r, const QualityRules& rules) {
   s += line("non-convex quads", f("%zu", r.non_convex));
   s += line("zero-area panels", f("%zu", r.zero_area));
   s += line("very close panel centres", f("%zu pairs", r.close_centre_pairs));
+  s += line("panels through each other",
+            !r.crossing_pairs ? std::string("not checked")
+            : *r.crossing_pairs == 0
+                ? std::string("0 pairs")
+                : f("%zu pairs, the first near (%.4g, %.4g, %.4g) m", *r.crossing_pairs,
+                    r.crossing_where.x, r.crossing_where.y, r.crossing_where.z));
   const TopologyFacts& t = r.topology;
   s += "\n";
   s += line("watertight", t.watertight ? "yes" : "no");

@@ -33,6 +33,7 @@ struct QualityRules {
   bool require_normals_into_fluid = true;
   bool require_no_free_edges_below_waterline = true;
   bool require_manifold = true;
+  bool require_no_crossing = true;  // no panel passes through another (when it was measured)
 };
 
 struct WaveOptions {
@@ -64,6 +65,11 @@ struct QualityOptions {
   double plane_tol = 1e-6;
   WaveOptions waves;
   std::size_t worst_count = 10;
+  // Pairs of panels that pass through each other and the first one's place (model frame, m), as
+  // the caller measured them (query/find_self_intersections.h: this stage has no BVH). Unset:
+  // not measured, and the rule is not applied.
+  std::optional<std::size_t> crossing_pairs;
+  Vec3d crossing_where;
 };
 
 enum class QualityRule : std::uint8_t {
@@ -146,6 +152,8 @@ struct QualityReport {
   double min_equilateral = 0, mean_equilateral = 0;  // over triangles
   double max_warp = 0, max_warp_angle_deg = 0, max_aspect_ratio = 0;
   std::size_t non_convex = 0, zero_area = 0, close_centre_pairs = 0, knuckle_edges = 0;
+  std::optional<std::size_t> crossing_pairs;  // from QualityOptions
+  Vec3d crossing_where;
   TopologyFacts topology;
   WaveFigures waves;
   std::vector<WorstPanel> worst;

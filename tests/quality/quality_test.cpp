@@ -275,6 +275,29 @@ TEST(Quality, IdenticalForOneAndEightThreads) {
   EXPECT_EQ(r1.per_face.equilateral, r2.per_face.equilateral);
 }
 
+// The crossing count is measured by the caller (the BVH lives in src/query); unmeasured, the rule
+// is not applied and the outputs say so.
+TEST(Quality, CrossingPanelsFailAHardRuleWhenMeasured) {
+  const SurfaceMesh m = test::box_mesh({0, 0, 0}, {1, 1, 1}, 4);
+  QualityOptions o;
+  o.waterline_z = 2.0;
+  const QualityReport unmeasured = assess_quality(m, o);
+  EXPECT_TRUE(unmeasured.passes(o.rules));
+  EXPECT_TRUE(nlohmann::json::parse(to_json(unmeasured, o.rules))["crossing_pairs"].is_null());
+  EXPECT_NE(format_table(unmeasured, o.rules).find("not checked"), std::string::npos);
+  o.crossing_pairs = 3;
+  o.crossing_where = {0.5, 0.25, 1};
+  const QualityReport r = assess_quality(m, o);
+  ASSERT_FALSE(r.passes(o.rules));
+  ASSERT_EQ(r.failures(o.rules).size(), 1u);
+  EXPECT_NE(r.failures(o.rules)[0].find("3 pairs of panels pass through each other"),
+            std::string::npos);
+  EXPECT_NE(r.failures(o.rules)[0].find("x 0.5, y 0.25, z 1 m"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(to_json(r, o.rules))["crossing_pairs"].get<int>(), 3);
+  o.rules.require_no_crossing = false;
+  EXPECT_TRUE(r.passes(o.rules));
+}
+
 TEST(Quality, JsonTableAndFieldsAgree) {
   const SurfaceMesh m = test::sphere_mesh(1.0, {0, 0, 0}, 24, 12);
   QualityOptions o;

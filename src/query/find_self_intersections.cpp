@@ -1,0 +1,265 @@
+// collect triangles (local frame) -> candidate pairs from rtcCollide -> decide each pair in
+// double -> sort and count the crossing face pairs.
+#include "query/find_self_intersections.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <tuple>
+#include <utility>
+
+#include "core/bbox.h"
+#include "query/embree_device.h"
+
+namespace hm {
+namespace {
+
+struct Triangles {
+  std::vector<std::array<Vec3d, 3>> corners;  // local frame, m
+  std::vector<Index> face;                    // the mesh face each triangle came from
+};
+
+Triangles collect_triangles(const SurfaceMesh& mesh, const Vec3d& centre) {
+  Triangles t;
+  auto add = [&](Index f, Index a, Index b, Index c) {
+    t.corners.push_back(
+        {mesh.positions[a] - centre, mesh.positions[b] - centre, mesh.positions[c] - centre});
+    t.face.push_back(f);
+  };
+  for (Index f = 0; f < mesh.faces.size(); ++f) {
+    const Face& q = mesh.faces[f];
+    add(f, q[0], q[1], q[2]);
+    if (!is_triangle(q)) add(f, q[0], q[2], q[3]);
+  }
+  return t;
+}
+
+// ---- the decision, triangle against triangle, in double ----------------------------------------
+
+struct Chord {
+  double t0 = 0, t1 = 0;  // along the planes' common line
+  Vec3d p0, p1;           // the chord's ends
+};
+
+// The chord of triangle p on the line with direction dir, from the signed distances d of its
+// corners to the other plane (which straddle it).
+Chord chord(const std::array<Vec3d, 3>& p, const std::array<double, 3>& d, const Vec3d& dir) {
+  Chord c;
+  c.t0 = std::numeric_limits<double>::infinity();
+  c.t1 = -c.t0;
+  auto take = [&](const Vec3d& x) {
+    const double t = dot(dir, x);
+    if (t < c.t0) c.t0 = t, c.p0 = x;
+    if (t > c.t1) c.t1 = t, c.p1 = x;
+  };
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (d[i] == 0) take(p[i]);
+    if ((d[i] < 0 && d[j] > 0) || (d[i] > 0 && d[j] < 0)) {
+      take(p[i] + (d[i] / (d[i] - d[j])) * (p[j] - p[i]));
+    }
+  }
+  return c;
+}
+
+// 2D: the signed distance of r from the line through p and q, positive on the left.
+double side(const Vec2d& p, const Vec2d& q, const Vec2d& r) {
+  const double len = norm(q - p);
+  return len > 0 ? cross(q - p, r - p) / len : 0;
+}
+
+bool strictly_inside(const std::array<Vec2d, 3>& t, const Vec2d& r, double tol) {
+  const double s = cross(t[1] - t[0], t[2] - t[0]) > 0 ? 1 : -1;
+  for (int i = 0; i < 3; ++i) {
+    if (s * side(t[i], t[(i + 1) % 3], r) <= tol) return false;
+  }
+  return true;
+}
+
+// Coplanar triangles overlap when an edge of one crosses an edge of the other (each beyond tol of
+// the other's line) or a corner of one is inside the other by more than tol. Sets where.
+bool coplanar_overlap(const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b,
+                      const Vec3d& normal, double tol, Vec3d& where) {
+  // Drop the normal's largest axis.
+  const Vec3d m{std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)};
+  const int drop = m.x >= m.y && m.x >= m.z ? 0 : (m.y >= m.z ? 1 : 2);
+  auto flat = [drop](const Vec3d& p) {
+    return drop == 0 ? Vec2d{p.y, p.z} : drop == 1 ? Vec2d{p.z, p.x} : Vec2d{p.x, p.y};
+  };
+  const std::array<Vec2d, 3> a2{flat(a[0]), flat(a[1]), flat(a[2])};
+  const std::array<Vec2d, 3> b2{flat(b[0]), flat(b[1]), flat(b[2])};
+  for (int i = 0; i < 3; ++i) {
+    if (strictly_inside(b2, a2[i], tol)) return where = a[i], true;
+    if (strictly_inside(a2, b2[i], tol)) return where = b[i], true;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3;
+      const double s0 = side(a2[i], a2[i1], b2[j]), s1 = side(a2[i], a2[i1], b2[j1]);
+      const double r0 = side(b2[j], b2[j1], a2[i]), r1 = side(b2[j], b2[j1], a2[i1]);
+      const bool cross_a = (s0 > tol && s1 < -tol) || (s0 < -tol && s1 > tol);
+      const bool cross_b = (r0 > tol && r1 < -tol) || (r0 < -tol && r1 > tol);
+      if (cross_a && cross_b) {
+        where = a[i] + (r0 / (r0 - r1)) * (a[i1] - a[i]);
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool triangles_cross(const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& b, double tol,
+                     Vec3d& where) {
+  const Vec3d na = cross(a[1] - a[0], a[2] - a[0]);
+  const Vec3d nb = cross(b[1] - b[0], b[2] - b[0]);
+  const double la = norm(na), lb = norm(nb);
+  if (!(la > 0) || !(lb > 0)) return false;  // a zero-area face has no plane to cross
+  const Vec3d ua = na / la, ub = nb / lb;
+  std::array<double, 3> da{}, db{};  // corners of a from b's plane, and of b from a's
+  for (int i = 0; i < 3; ++i) {
+    da[i] = dot(ub, a[i] - b[0]);
+    db[i] = dot(ua, b[i] - a[0]);
+  }
+  auto lo = [](const std::array<double, 3>& d) { return std::min({d[0], d[1], d[2]}); };
+  auto hi = [](const std::array<double, 3>& d) { return std::max({d[0], d[1], d[2]}); };
+  const bool flat_a = std::max(-lo(da), hi(da)) <= tol;
+  const bool flat_b = std::max(-lo(db), hi(db)) <= tol;
+  if (flat_a && flat_b) return coplanar_overlap(a, b, ub, tol, where);
+  if (!(lo(da) < -tol && hi(da) > tol && lo(db) < -tol && hi(db) > tol)) return false;
+  const Vec3d dir = cross(ua, ub);
+  const double ld = norm(dir);
+  if (!(ld > 0)) return false;
+  const Vec3d u = dir / ld;
+  const Chord ca = chord(a, da, u), cb = chord(b, db, u);
+  const double t0 = std::max(ca.t0, cb.t0), t1 = std::min(ca.t1, cb.t1);
+  if (!(t1 - t0 > tol)) return false;
+  // The middle of the shared part, on a's chord.
+  const double span = ca.t1 - ca.t0;
+  const double s = span > 0 ? (0.5 * (t0 + t1) - ca.t0) / span : 0.5;
+  where = ca.p0 + s * (ca.p1 - ca.p0);
+  return true;
+}
+
+// ---- the candidates, from Embree ----------------------------------------------------------------
+
+struct CollideState {
+  const SurfaceMesh* mesh = nullptr;
+  const Triangles* tris = nullptr;
+  double tol = 0;
+  std::mutex lock;
+  std::vector<std::pair<std::pair<Index, Index>, Vec3d>> hits;  // triangle pairs, a < b
+  bool out_of_memory = false;
+};
+
+bool share_a_vertex(const Face& f, const Face& g) {
+  for (int i = 0; i < corner_count(f); ++i)
+    for (int j = 0; j < corner_count(g); ++j)
+      if (f[i] == g[j]) return true;
+  return false;
+}
+
+// Float box of a triangle, rounded outward so that it holds the double triangle.
+void bounds(const RTCBoundsFunctionArguments* args) noexcept {
+  const CollideState& s = *static_cast<const CollideState*>(args->geometryUserPtr);
+  const std::array<Vec3d, 3>& t = s.tris->corners[args->primID];
+  BBox3d box;
+  for (const Vec3d& p : t) box.add(p);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  auto down = [](double x) { return std::nextafter(static_cast<float>(x), -kInf); };
+  auto up = [](double x) { return std::nextafter(static_cast<float>(x), kInf); };
+  RTCBounds* b = args->bounds_o;
+  b->lower_x = down(box.lo.x), b->lower_y = down(box.lo.y), b->lower_z = down(box.lo.z);
+  b->upper_x = up(box.hi.x), b->upper_y = up(box.hi.y), b->upper_z = up(box.hi.z);
+}
+
+// Called by Embree from its worker threads with batches of box-overlapping pairs. Deciding a
+// pair allocates nothing; only a hit takes the lock, and a failed allocation is recorded rather
+// than thrown into Embree.
+void collide(void* user, RTCCollision* pairs, unsigned count) noexcept {
+  CollideState& s = *static_cast<CollideState*>(user);
+  for (unsigned k = 0; k < count; ++k) {
+    Index a = pairs[k].primID0, b = pairs[k].primID1;
+    if (a == b) continue;
+    if (a > b) std::swap(a, b);
+    const Index fa = s.tris->face[a], fb = s.tris->face[b];
+    if (fa == fb || share_a_vertex(s.mesh->faces[fa], s.mesh->faces[fb])) continue;
+    Vec3d where;
+    if (!triangles_cross(s.tris->corners[a], s.tris->corners[b], s.tol, where)) continue;
+    const std::lock_guard<std::mutex> guard(s.lock);
+    try {
+      s.hits.push_back({{a, b}, where});
+    } catch (...) {
+      s.out_of_memory = true;
+    }
+  }
+}
+
+void collide_candidates(CollideState& state) {
+  RTCDevice device = query::embree_device();
+  struct SceneRelease {
+    void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
+  };
+  std::unique_ptr<RTCSceneTy, SceneRelease> scene(rtcNewScene(device));
+  query::check_embree("rtcNewScene");
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(state.tris->face.size()));
+  rtcSetGeometryUserData(geom, &state);
+  rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene.get(), geom);
+  rtcReleaseGeometry(geom);
+  query::check_embree("building the collision geometry");
+  rtcCommitScene(scene.get());
+  query::check_embree("rtcCommitScene (collision)");
+  rtcCollide(scene.get(), scene.get(), collide, &state);
+  query::check_embree("rtcCollide");
+  if (state.out_of_memory) throw std::bad_alloc();
+}
+
+}  // namespace
+
+SelfIntersections find_self_intersections(const SurfaceMesh& mesh, double tol,
+                                          std::size_t max_listed) {
+  SelfIntersections out;
+  if (mesh.faces.size() < 2) return out;
+  BBox3d box;
+  for (const Vec3d& p : mesh.positions) box.add(p);
+  const Triangles tris = collect_triangles(mesh, box.center());
+
+  CollideState state;
+  state.mesh = &mesh;
+  state.tris = &tris;
+  state.tol = tol;
+  collide_candidates(state);
+
+  // Face pairs, in a fixed order whatever order the threads found them in.
+  std::vector<FaceCrossing> faces;
+  faces.reserve(state.hits.size());
+  for (const auto& [pair, where] : state.hits) {
+    Index fa = tris.face[pair.first], fb = tris.face[pair.second];
+    if (fa > fb) std::swap(fa, fb);
+    faces.push_back({fa, fb, where + box.center()});
+  }
+  auto key = [](const FaceCrossing& c) { return std::make_tuple(c.face_a, c.face_b); };
+  std::sort(faces.begin(), faces.end(), [&](const FaceCrossing& x, const FaceCrossing& y) {
+    if (key(x) != key(y)) return key(x) < key(y);
+    return std::tie(x.where.x, x.where.y, x.where.z) < std::tie(y.where.x, y.where.y, y.where.z);
+  });
+  faces.erase(
+      std::unique(faces.begin(), faces.end(),
+                  [&](const FaceCrossing& x, const FaceCrossing& y) { return key(x) == key(y); }),
+      faces.end());
+  out.count = faces.size();
+  faces.resize(std::min(faces.size(), max_listed));
+  out.first = std::move(faces);
+  return out;
+}
+
+}  // namespace hm
