@@ -133,16 +133,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   if (ph.floating) qo.waterline_z = 0;
   // No panel may pass through another (a panel code cannot integrate over such a surface): a
   // hard rule of the report, and a warning naming the patches.
-  const SelfIntersections crossings = measure_crossings(*output);
-  qo.crossing_pairs = crossings.count;
-  if (crossings.count > 0) {
-    qo.crossing_where = crossings.first.front().where;
-    if (!g.quiet) {
-      std::fprintf(
-          stderr, "hullmesh: warning: %s\n",
-          describe_crossings(c.file, ph.patches(), *output, crossings, "the panel mesh").c_str());
-    }
-  }
+  measure_panel_crossings(c.file, ph.patches(), *output, g.quiet, qo);
   const QualityReport quality = assess_quality(*output, qo);
   std::optional<HydrostaticsPair> hydro;
   if (ph.floating) hydro = compare_hydrostatics(ph, *output, quality.half_hull);

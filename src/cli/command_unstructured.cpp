@@ -172,16 +172,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   if (floating) qo.waterline_z = 0;
   // No panel may pass through another (a panel code cannot integrate over such a surface): a
   // hard rule of the report, and a warning naming the patches.
-  const SelfIntersections crossings = measure_crossings(*output);
-  qo.crossing_pairs = crossings.count;
-  if (crossings.count > 0) {
-    qo.crossing_where = crossings.first.front().where;
-    if (!g.quiet) {
-      std::fprintf(
-          stderr, "hullmesh: warning: %s\n",
-          describe_crossings(c.file, patches, *output, crossings, "the panel mesh").c_str());
-    }
-  }
+  measure_panel_crossings(c.file, patches, *output, g.quiet, qo);
   const QualityReport quality = assess_quality(*output, qo);
   // The mesh's hydrostatics against the exact NURBS at the same position: the direct measure of
   // the panels' geometric accuracy.

@@ -209,4 +209,16 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   out.seconds_features = seconds_since(t1);
 }
 
+void measure_panel_crossings(const std::string& file, std::span<const Patch> patches,
+                             const SurfaceMesh& panels, bool quiet, QualityOptions& qo) {
+  const SelfIntersections crossings = measure_crossings(panels);
+  qo.crossing_pairs = crossings.count;
+  if (crossings.count == 0) return;
+  qo.crossing_where = crossings.first.front().where;
+  if (!quiet) {
+    std::fprintf(stderr, "hullmesh: warning: %s\n",
+                 describe_crossings(file, patches, panels, crossings, "the panel mesh").c_str());
+  }
+}
+
 }  // namespace hm::cli

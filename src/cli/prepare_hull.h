@@ -12,6 +12,7 @@
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
 #include "quality/hydrostatics.h"
+#include "quality/quality_report.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/cut_at_plane.h"
 #include "unstructured/features.h"
@@ -76,6 +77,11 @@ struct PreparedHull {
 // first. Throws whatever import, merge and the cuts throw; GeometryError (exit 5) when the merged
 // surface is not edge-manifold, naming where.
 void prepare_hull(const PrepareArgs& args, PreparedHull& out);
+
+// The panels checked for faces that pass through each other: the count and the first place go
+// into `qo` for the report's hard rule, and unless quiet a warning names the patches.
+void measure_panel_crossings(const std::string& file, std::span<const Patch> patches,
+                             const SurfaceMesh& panels, bool quiet, QualityOptions& qo);
 
 // The panels' hydrostatics at the waterplane z = 0 of the floating frame, and the same
 // integrals on the NURBS (the exact values they approximate). Only for a floating hull.

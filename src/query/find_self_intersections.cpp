@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <mutex>
 #include <new>
 #include <tuple>
@@ -203,10 +202,7 @@ void collide(void* user, RTCCollision* pairs, unsigned count) noexcept {
 
 void collide_candidates(CollideState& state) {
   RTCDevice device = query::embree_device();
-  struct SceneRelease {
-    void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
-  };
-  std::unique_ptr<RTCSceneTy, SceneRelease> scene(rtcNewScene(device));
+  const query::ScenePtr scene(rtcNewScene(device));
   query::check_embree("rtcNewScene");
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(state.tris->face.size()));

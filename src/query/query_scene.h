@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "query/embree_device.h"
 #include "query/hull_query.h"
 #include "query/plane_bvh.h"
 #include "query/surface_refine.h"
@@ -37,10 +38,7 @@ struct HullQuery::Impl {
   std::vector<std::array<Vec2d, 3>> tri_uv;  // corner (u, v) on tri_patch, seams unwrapped
   std::vector<Index> patch_first;            // size patches + 1
 
-  struct SceneRelease {
-    void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
-  };
-  std::unique_ptr<RTCSceneTy, SceneRelease> scene;
+  query::ScenePtr scene;
   query::PlaneBvh plane_bvh;
 
   Impl(std::span<const Patch> patches, const SurfaceMesh& mesh);

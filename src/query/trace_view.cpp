@@ -147,10 +147,6 @@ ViewCamera fit_body_plan(const BBox3d& box, std::uint32_t width, double margin,
   return cam;
 }
 
-struct SceneRelease {
-  void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
-};
-
 }  // namespace
 
 ViewCamera fit_view_camera(const SurfaceMesh& mesh, ViewKind kind, std::uint32_t width,
@@ -207,7 +203,7 @@ ViewHits trace_view(const SurfaceMesh& mesh, const ViewCamera& cam) {
   }
 
   RTCDevice device = query::embree_device();
-  std::unique_ptr<RTCSceneTy, SceneRelease> scene(rtcNewScene(device));
+  const query::ScenePtr scene(rtcNewScene(device));
   query::check_embree("rtcNewScene");
   rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
