@@ -436,6 +436,4 @@ PatchExtent patch_extent(const Patch& p) {
   return out;
 }
 
-BBox3d patch_bbox(const Patch& p) { return patch_extent(p).box; }
-
 }  // namespace hm

@@ -51,12 +51,10 @@ double patch_area(const Patch& p);
 
 // Bounding box of the surface over its whole parameter domain (trims ignored), from a grid of
 // 4 samples per knot span and direction: tight to the surface, unlike the control net's box,
-// which a curved patch overshoots (a Wigley's net reaches twice its beam).
-BBox3d patch_bbox(const Patch& p);
-
-// The box above and, from the same samples, the area of the untrimmed surface as the sum of the
-// sample grid's triangles (m^2): a cheap lower estimate, zero when the surface collapses to a line
-// or a point, whatever its parametrisation.
+// which a curved patch overshoots (a Wigley's net reaches twice its beam). From the same samples,
+// the area of the untrimmed surface as the sum of the sample grid's triangles (m^2): a cheap
+// lower estimate, zero when the surface collapses to a line or a point, whatever its
+// parametrisation.
 struct PatchExtent {
   BBox3d box;
   double grid_area = 0;
