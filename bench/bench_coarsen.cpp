@@ -120,6 +120,26 @@ void BM_SelectIndependent(benchmark::State& state) {
 }
 BENCHMARK(BM_SelectIndependent)->Arg(1 << 14)->Arg(1 << 18);
 
+void BM_SelectGreedy(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0)), vertices = 2 * n;
+  std::mt19937 rng(2);
+  std::uniform_int_distribution<Index> pick(0, static_cast<Index>(vertices - 1));
+  std::uniform_real_distribution<double> pr(0, 1);
+  std::vector<Index> offsets{0}, region;
+  std::vector<std::uint64_t> keys;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 12; ++k) region.push_back(pick(rng));
+    offsets.push_back(static_cast<Index>(region.size()));
+    keys.push_back(kernel::priority_key(pr(rng), static_cast<Index>(i)));
+  }
+  std::vector<std::uint8_t> held(vertices, 0);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(kernel::select_greedy(keys, offsets, region, held));
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_SelectGreedy)->Arg(1 << 14)->Arg(1 << 18);
+
 double seconds(const Input& in, int threads, CoarsenedMesh* out = nullptr) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   const auto t0 = std::chrono::steady_clock::now();

@@ -1,8 +1,10 @@
 #include "kernels/independent_set.h"
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <numeric>
 
 #include "core/parallel.h"
 
@@ -64,6 +66,26 @@ std::vector<Index> select_independent(std::span<const std::uint64_t> keys,
   std::vector<Index> out;
   for (std::size_t i = 0; i < n; ++i) {
     if (won[i]) out.push_back(static_cast<Index>(i));
+  }
+  return out;
+}
+
+std::vector<Index> select_greedy(std::span<const std::uint64_t> keys,
+                                 std::span<const Index> offsets, std::span<const Index> region,
+                                 std::vector<std::uint8_t>& held) {
+  std::vector<Index> order(keys.size());
+  std::iota(order.begin(), order.end(), Index{0});
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[a] > keys[b]; });
+  std::vector<Index> out;
+  for (Index i : order) {
+    bool free = true;
+    for (Index k = offsets[i]; k < offsets[i + 1] && free; ++k) free = !held[region[k]];
+    if (!free) continue;
+    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) held[region[k]] = 1;
+    out.push_back(i);
+  }
+  for (Index i : out) {
+    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) held[region[k]] = 0;
   }
   return out;
 }

@@ -1,7 +1,8 @@
 // Independent-set selection for batched, parallel mesh operations (edge collapses, vertex moves):
-// of candidates that each touch a region of vertices, keep those that win every vertex of their
-// region, so no two kept candidates share a vertex. Deterministic: the winner at a vertex is the
-// largest key, and keys are distinct (pack the priority above the candidate index).
+// of candidates that each touch a region of vertices, keep a set of which no two share a vertex.
+// Two rules: local maxima (a candidate wins every vertex of its region; parallel, but in a dense
+// batch only a few percent win) and greedy in key order (serial, maximal: many more per batch).
+// Deterministic: keys are distinct (pack the priority above the candidate index).
 #pragma once
 
 #include <cstdint>
@@ -23,5 +24,13 @@ std::uint64_t priority_key(double priority, Index index);
 std::vector<Index> select_independent(std::span<const std::uint64_t> keys,
                                       std::span<const Index> offsets, std::span<const Index> region,
                                       std::vector<std::uint64_t>& marks);
+
+// Greedy: candidates in descending key order, each kept when no kept one shares a vertex with
+// it. The result is maximal (every candidate left out shares a vertex with a kept one of larger
+// key) and is returned in descending key order. `held` is scratch of vertex_count zeros, returned
+// zeroed.
+std::vector<Index> select_greedy(std::span<const std::uint64_t> keys,
+                                 std::span<const Index> offsets, std::span<const Index> region,
+                                 std::vector<std::uint8_t>& held);
 
 }  // namespace hm::kernel

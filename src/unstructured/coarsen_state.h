@@ -140,8 +140,10 @@ enum class Applied : std::uint8_t { kDone, kRejectedShape, kRejectedDeviation };
 // `joined_corners` for the caller to add to corner_edges.
 Applied apply_collapse(State& s, Index v, Index t, double& deviation,
                        std::array<Index, 2>& joined_corners);
-// The vertices a collapse v -> t reads or writes: v, t and both rings (appended to out).
-void collapse_region(const State& s, Index v, Index t, std::vector<Index>& out);
+// The vertices a collapse v -> t reads or writes: v, t and both rings, as every corner of v's and
+// t's faces (with repeats): region_size(s, v, t) entries, written to out.
+Index region_size(const State& s, Index v, Index t);
+void collapse_region(const State& s, Index v, Index t, std::span<Index> out);
 
 // Witnesses of the given faces plus `extra` (a fine vertex no longer held by a mesh vertex, or
 // kInvalid; ignored when it is a witness already), assigned to the

@@ -97,6 +97,48 @@ TEST(IndependentSet, NoTwoChosenShareAVertexAndTheBestAlwaysWins) {
   }
 }
 
+TEST(IndependentSet, GreedyIsMaximalBestFirstAndKeepsMoreThanLocalMaxima) {
+  std::mt19937 rng(5);
+  const std::size_t vertices = 4000, candidates = 3000;
+  std::vector<Index> offsets{0}, region;
+  std::vector<std::uint64_t> keys;
+  std::uniform_int_distribution<Index> pick(0, vertices - 1);
+  std::uniform_real_distribution<double> pr(0, 1);
+  for (std::size_t i = 0; i < candidates; ++i) {
+    // Regions of nearby vertices, with a repeat, as collapse regions have.
+    const Index base = pick(rng);
+    for (int k = 0; k < 12; ++k) region.push_back((base + pick(rng) % 40) % vertices);
+    region.push_back(region[offsets.back()]);
+    offsets.push_back(static_cast<Index>(region.size()));
+    keys.push_back(priority_key(pr(rng), static_cast<Index>(i)));
+  }
+  std::vector<std::uint8_t> held(vertices, 0);
+  const std::vector<Index> kept = select_greedy(keys, offsets, region, held);
+  for (std::uint8_t h : held) ASSERT_EQ(h, 0u);  // handed back cleared
+  ASSERT_FALSE(kept.empty());
+  for (std::size_t i = 1; i < kept.size(); ++i) EXPECT_GT(keys[kept[i - 1]], keys[kept[i]]);
+  std::vector<Index> owner(vertices, kInvalid);
+  for (Index c : kept) {
+    for (Index k = offsets[c]; k < offsets[c + 1]; ++k) {
+      EXPECT_TRUE(owner[region[k]] == kInvalid || owner[region[k]] == c)
+          << "vertex " << region[k] << " shared";
+      owner[region[k]] = c;
+    }
+  }
+  // Maximal: each candidate left out meets a kept one of larger key.
+  for (std::size_t i = 0; i < candidates; ++i) {
+    if (std::find(kept.begin(), kept.end(), Index(i)) != kept.end()) continue;
+    bool blocked = false;
+    for (Index k = offsets[i]; k < offsets[i + 1] && !blocked; ++k) {
+      const Index o = owner[region[k]];
+      blocked = o != kInvalid && keys[o] > keys[i];
+    }
+    EXPECT_TRUE(blocked) << i;
+  }
+  std::vector<std::uint64_t> marks(vertices, 0);
+  EXPECT_GT(kept.size(), select_independent(keys, offsets, region, marks).size());
+}
+
 TEST(IndependentSet, PriorityKeyOrdersByPriorityThenSmallerIndex) {
   EXPECT_GT(priority_key(0.6, 9), priority_key(0.5, 1));
   EXPECT_GT(priority_key(0.5, 1), priority_key(0.5, 2));
