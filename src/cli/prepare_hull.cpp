@@ -1,6 +1,7 @@
 #include "cli/prepare_hull.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "cli/load_hull.h"
@@ -132,7 +133,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
 
   // The merge can leave an edge with three faces where three patch borders meet at a
   // resolution that happens to split them badly (issue 4). Where the caller allows it, the fine
-  // mesh is made again twice as dense, and the retry is reported.
+  // mesh is made again denser (retry_growth), and the retry is reported.
   std::size_t triangles = args.fine_triangles;
   for (int attempt = 0;; ++attempt) {
     TessellateOptions o = args.tessellate;
@@ -175,18 +176,23 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     }
     const SurfaceMesh& fine = out.fine();
     out.adjacency = build_edge_adjacency(fine.faces, fine.vertex_count());
-    const bool retry =
-        !out.adjacency.nonmanifold_edges.empty() && triangles > 0 && attempt < args.finer_retries;
+    // Two faces running the same way along an edge is the same kind of accident (npl at some
+    // resolutions), and --validate refuses it.
+    const std::size_t faults =
+        out.adjacency.nonmanifold_edges.size() + out.adjacency.inconsistent_edges.size();
+    const bool retry = faults > 0 && triangles > 0 && attempt < args.finer_retries;
     if (!retry) break;
+    const auto denser =
+        static_cast<std::size_t>(std::ceil(static_cast<double>(triangles) * args.retry_growth));
     if (!args.quiet) {
       std::fprintf(stderr,
-                   "hullmesh: note: %s: the merge left %zu edges with more than two faces at %zu "
-                   "fine triangles; trying again at %zu\n",
-                   args.file.c_str(), out.adjacency.nonmanifold_edges.size(), triangles,
-                   triangles * 2);
+                   "hullmesh: note: %s: the merge left %zu edges with more than two faces and %zu "
+                   "run the same way by two faces at %zu fine triangles; trying again at %zu\n",
+                   args.file.c_str(), out.adjacency.nonmanifold_edges.size(),
+                   out.adjacency.inconsistent_edges.size(), triangles, denser);
     }
-    out.retried_triangles = triangles * 2;
-    triangles = triangles * 2;
+    out.retried_triangles = denser;
+    triangles = denser;
   }
   progress.stage("features");
   const long long t1 = now_ns();

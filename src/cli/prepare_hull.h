@@ -30,9 +30,10 @@ struct PrepareArgs {
   MergeOptions merge;
   FeatureOptions features;
   bool quiet = false;
-  // Times the fine mesh may be made twice as dense when the merge leaves non-manifold edges (only
-  // when fine_triangles sizes it).
+  // Times the fine mesh may be made denser, by retry_growth in triangle count, when the merge
+  // leaves non-manifold or inconsistently oriented edges (only when fine_triangles sizes it).
   int finer_retries = 0;
+  double retry_growth = 2;
   // --validate: the invariants of each stage's mesh are checked as it ends (validate_stage.h).
   bool validate = false;
   // Told each stage as it starts (import, tessellate, merge, cut, features); null: silent.
