@@ -18,6 +18,8 @@ constexpr int kMaxHalvings = 40;
 constexpr int kGridSamplesPerSpan = 3;
 constexpr int kMaxGridSamples = 48;  // per direction
 constexpr int kStarts = 4;           // best local minima of the grid tried
+// A Newton step shorter than this share of the control net's size is converged.
+constexpr double kStepFloor = 1e-13;
 
 struct Point2 {
   double u, v;
@@ -102,9 +104,14 @@ struct Solver {
       Vec3d dn[6];
       double un = u, vn = v, fn = f;
       bool decreased = false;
+      const double su = norm(d[1]), sv = norm(d[2]);
       for (int h = 0; h < kMaxHalvings; ++h) {
         un = std::clamp(u + du, s.u0, s.u1);
         vn = std::clamp(v + dv, s.v0, s.v1);
+        // At the minimum, rounding makes the distance rise along any step; halving a step that
+        // is already below the convergence size only repeats that (up to kMaxHalvings
+        // evaluations, most of a projection's cost before this check).
+        if (h > 0 && std::abs(un - u) * su + std::abs(vn - v) * sv <= kStepFloor * scale) break;
         eval(un, vn, dn);
         fn = squared_norm(dn[0] - q);
         if (fn <= f) {
@@ -118,13 +125,13 @@ struct Solver {
         converged = stationary(u, v, d);
         break;
       }
-      const double moved = std::abs(un - u) * norm(d[1]) + std::abs(vn - v) * norm(d[2]);
+      const double moved = std::abs(un - u) * su + std::abs(vn - v) * sv;
       const bool same = un == u && vn == v;
       u = un;
       v = vn;
       f = fn;
       std::copy(dn, dn + 6, d);
-      if (moved <= 1e-13 * scale || same) converged = stationary(u, v, d);
+      if (moved <= kStepFloor * scale || same) converged = stationary(u, v, d);
     }
     if (!converged) converged = stationary(u, v, d);
     SurfaceProjection out;
