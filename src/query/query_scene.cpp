@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/limits.h"
@@ -53,6 +54,86 @@ Vec2d HullQuery::Impl::uv_at(Index t, double b1, double b2) const {
 Vec3d HullQuery::Impl::oriented_normal(PatchId p, Vec2d uv) const {
   const Vec3d n = normal(patches[p].surface, uv.x, uv.y);
   return patches[p].reversed ? -n : n;
+}
+
+void HullQuery::Impl::project_corners(const SurfaceMesh& mesh) {
+  // Corner (u, v): the vertex's own when it lies on this triangle's patch. Otherwise the vertex
+  // is projected onto the patch, once per (patch, vertex) pair: a border vertex of the merged
+  // mesh names one patch and is a corner of several triangles of each neighbour, and each
+  // projection is a Newton solve on the NURBS (the most costly part of building the query).
+  const bool has_uv = !mesh.vertex_uv.empty();
+  auto own = [&](Index v, PatchId p) {
+    return has_uv && (mesh.vertex_patch.empty() || mesh.vertex_patch[v] == p);
+  };
+  struct Request {
+    PatchId patch;
+    Index vertex;
+    Index slot;  // 3 t + k: corner k of triangle t
+  };
+  const std::size_t total = tri.size();
+  // Count -> scan -> scatter: each triangle writes its own slice of the requests.
+  std::vector<Index> first(total + 1, 0);
+  parallel_for(0, total, [&](std::size_t t) {
+    Index n = 0;
+    for (int k = 0; k < 3; ++k) n += !own(tri[t][k], tri_patch[t]);
+    first[t + 1] = n;
+  });
+  for (std::size_t t = 0; t < total; ++t) first[t + 1] += first[t];
+  std::vector<Request> req(first.back());
+  parallel_for(0, total, [&](std::size_t t) {
+    Index r = first[t];
+    for (int k = 0; k < 3; ++k) {
+      const Index v = tri[t][k];
+      if (own(v, tri_patch[t])) {
+        tri_uv[t][k] = mesh.vertex_uv[v];
+      } else {
+        req[r++] = {tri_patch[t], v, static_cast<Index>(3 * t + k)};
+      }
+    }
+  });
+  // Requests grouped by pair, each group in slot order (a strict order: the same groups and
+  // starts for any thread count).
+  parallel_sort(req.begin(), req.end(), [](const Request& a, const Request& b) {
+    return std::tie(a.patch, a.vertex, a.slot) < std::tie(b.patch, b.vertex, b.slot);
+  });
+  std::vector<Index> group;
+  for (std::size_t r = 0; r < req.size(); ++r) {
+    if (r == 0 || req[r].patch != req[r - 1].patch || req[r].vertex != req[r - 1].vertex) {
+      group.push_back(static_cast<Index>(r));
+    }
+  }
+  group.push_back(static_cast<Index>(req.size()));
+  parallel_for(0, group.size() - 1, [&](std::size_t g) {
+    const Request& head = req[group[g]];
+    const NurbsSurface& surface = patches[head.patch].surface;
+    const Vec3d& q = mesh.positions[head.vertex];
+    // Start from the mean (u, v) of the own corners of the first triangle in the group that has
+    // any; a global search only when none has.
+    SurfaceProjection proj;
+    bool started = false;
+    for (Index r = group[g]; r < group[g + 1] && !started; ++r) {
+      const Index t = req[r].slot / 3;
+      Vec2d sum;
+      int n = 0;
+      for (int k = 0; k < 3; ++k) {
+        if (own(tri[t][k], head.patch)) {
+          sum += mesh.vertex_uv[tri[t][k]];
+          ++n;
+        }
+      }
+      if (n > 0) {
+        proj = hm::closest_point(surface, q, sum.x / n, sum.y / n);
+        started = true;
+      }
+    }
+    if (!started) proj = hm::closest_point(surface, q);
+    for (Index r = group[g]; r < group[g + 1]; ++r) {
+      tri_uv[req[r].slot / 3][req[r].slot % 3] = {proj.u, proj.v};
+    }
+  });
+  parallel_for(0, total, [&](std::size_t t) {
+    query::unwrap_corners(domains[tri_patch[t]], tri_uv[t].data(), 3);
+  });
 }
 
 HullQuery::Impl::Impl(std::span<const Patch> in_patches, const SurfaceMesh& mesh)
@@ -108,34 +189,8 @@ HullQuery::Impl::Impl(std::span<const Patch> in_patches, const SurfaceMesh& mesh
     domains[p] = query::make_domain(patches[p].surface, accept_tolerance());
   });
 
-  // Corner (u, v): the vertex's own when it lies on this triangle's patch, otherwise projected
-  // onto the patch (a border vertex that names the neighbour, or a mesh without vertex_uv).
   tri_uv.resize(total);
-  const bool has_uv = !mesh.vertex_uv.empty();
-  parallel_for(0, total, [&](std::size_t t) {
-    const PatchId p = tri_patch[t];
-    bool known[3];
-    Vec2d sum;
-    int n_known = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Index v = tri[t][k];
-      known[k] = has_uv && (mesh.vertex_patch.empty() || mesh.vertex_patch[v] == p);
-      if (known[k]) {
-        tri_uv[t][k] = mesh.vertex_uv[v];
-        sum += mesh.vertex_uv[v];
-        ++n_known;
-      }
-    }
-    for (int k = 0; k < 3; ++k) {
-      if (known[k]) continue;
-      const Vec3d& q = mesh.positions[tri[t][k]];
-      const SurfaceProjection proj =
-          n_known > 0 ? hm::closest_point(patches[p].surface, q, sum.x / n_known, sum.y / n_known)
-                      : hm::closest_point(patches[p].surface, q);
-      tri_uv[t][k] = {proj.u, proj.v};
-    }
-    query::unwrap_corners(domains[p], tri_uv[t].data(), 3);
-  });
+  project_corners(mesh);
 
   // How far the triangles stray from the surface, sampled at their centroids: the closest-point
   // search widens its radius by this much so that it does not miss a patch whose triangles lie

@@ -42,6 +42,8 @@ struct HullQuery::Impl {
   query::PlaneBvh plane_bvh;
 
   Impl(std::span<const Patch> patches, const SurfaceMesh& mesh);
+  // Fills tri_uv (tri, tri_patch and domains must be set).
+  void project_corners(const SurfaceMesh& mesh);
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
 
