@@ -1,6 +1,7 @@
 #include "tessellate/trim.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -104,15 +105,46 @@ PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double 
   const std::size_t nu = lines.u.size(), nv = lines.v.size();
   std::vector<std::uint8_t> keep(nu * nv, 0);
   const double clearance = kLoopClearance * h;
-  parallel_for(0, nu * nv, [&](std::size_t k) {
-    const Vec2d w{lines.u[k % nu], lines.v[k / nu]};
-    const Vec2d q = scaled(w);
-    if (!inside_loops(scaled_loops, q)) return;
-    for (const auto& l : scaled_loops)
-      for (std::size_t i = 0; i < l.size(); ++i)
-        if (segment_distance(q, l[i], l[(i + 1) % l.size()]) < clearance) return;
-    keep[k] = 1;
-  });
+  // Row by row: every point of a grid row has the same scaled v, so the loop edges that cross
+  // the row (for the even-odd inside test) and those that come within the clearance of it are
+  // found once per row, not once per point. The arithmetic per point and edge is inside_loops'
+  // and segment_distance's, so the points kept are the same as testing every edge.
+  parallel_for(
+      0, nv,
+      [&](std::size_t j) {
+        const double y = scaled({s.u0, lines.v[j]}).y;
+        std::vector<double> crossings;
+        std::vector<std::array<Vec2d, 2>> near;
+        for (const auto& l : scaled_loops) {
+          for (std::size_t i = 0, prev = l.size() - 1; i < l.size(); prev = i++) {
+            const Vec2d& a = l[i];
+            const Vec2d& b = l[prev];
+            if ((a.y > y) != (b.y > y))
+              crossings.push_back((b.x - a.x) * (y - a.y) / (b.y - a.y) + a.x);
+            const Vec2d& c = l[(i + 1) % l.size()];
+            if (std::min(a.y, c.y) - clearance <= y && y <= std::max(a.y, c.y) + clearance) {
+              near.push_back({a, c});
+            }
+          }
+        }
+        std::sort(crossings.begin(), crossings.end());
+        for (std::size_t i = 0; i < nu; ++i) {
+          const Vec2d q = scaled({lines.u[i], lines.v[j]});
+          const auto right =
+              crossings.end() - std::upper_bound(crossings.begin(), crossings.end(), q.x);
+          if (right % 2 == 0) continue;
+          bool clear = true;
+          for (const auto& [a, c] : near) {
+            if (std::min(a.x, c.x) - clearance <= q.x && q.x <= std::max(a.x, c.x) + clearance &&
+                segment_distance(q, a, c) < clearance) {
+              clear = false;
+              break;
+            }
+          }
+          keep[i + nu * j] = clear;
+        }
+      },
+      1, 2);
   for (std::size_t k = 0; k < nu * nv; ++k) {
     if (!keep[k]) continue;
     const Vec2d w{lines.u[k % nu], lines.v[k / nu]};
