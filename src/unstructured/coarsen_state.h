@@ -95,6 +95,12 @@ struct State {
   std::vector<PatchId> face_patch;
   std::vector<std::uint8_t> face_alive;
   std::size_t live_faces = 0;
+  // Per face, kept by the collapses (the scoring reads them instead of recomputing each panel
+  // for every candidate around it); stale after improve_panels, which does not read them:
+  // (b - a) x (c - a) (m^2, its length twice the area), that length, and the triangle shape.
+  std::vector<Vec3d> face_normal;
+  std::vector<double> face_length;
+  std::vector<double> face_shape;
 
   // Features: kind per vertex; for on-line vertices the neighbours along the line (prev, next in
   // the fine line's order); feature edges joining two corners (sorted pairs).
@@ -111,6 +117,9 @@ struct State {
   std::vector<std::uint8_t> is_witness;  // per fine vertex: in some face's list
   double max_witness_distance = 0;       // m, largest accepted
 };
+
+// Recomputes face_normal, face_length and face_shape of face f from the positions.
+void update_face_cache(State& s, Index f);
 
 // Builds the state from the fine mesh and its features. Throws GeometryError on a non-manifold
 // or inconsistent input.

@@ -69,26 +69,17 @@ void collapse_region(const State& s, Index v, Index t, std::span<Index> out) {
 
 namespace {
 
-// What every target of v shares: v's ring, and the shape and normal of each of its faces.
+// What every target of v shares: v's ring and the worst shape among its faces (their normals
+// and areas are in the state's face cache).
 struct Star {
   std::vector<Index> ring;
-  std::vector<Vec3d> normal;  // unnormalised, per face of v
-  std::vector<double> length;
   double shape_min = 1;
 };
 
 void star_of(const State& s, Index v, Star& st) {
   ring_of(s, v, st.ring);
-  st.normal.clear();
-  st.length.clear();
   st.shape_min = 1;
-  for (Index f : s.vertex_faces[v]) {
-    const auto& tri = s.faces[f];
-    const Vec3d &a = s.position[tri[0]], &b = s.position[tri[1]], &c = s.position[tri[2]];
-    st.shape_min = std::min(st.shape_min, kernel::triangle_shape(a, b, c));
-    st.normal.push_back(cross(b - a, c - a));
-    st.length.push_back(norm(st.normal.back()));
-  }
+  for (Index f : s.vertex_faces[v]) st.shape_min = std::min(st.shape_min, s.face_shape[f]);
 }
 
 // check_link: test the link condition (scoring leaves it to the final check before applying:
@@ -130,7 +121,8 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
     const Vec3d &p0 = s.position[w[0]], &p1 = s.position[w[1]], &p2 = s.position[w[2]];
     const Vec3d n_new = cross(p1 - p0, p2 - p0);
     const double len_new = norm(n_new);
-    if (!(len_new > 0) || dot(n_new, st.normal[i]) < s.cos_normal_change * len_new * st.length[i]) {
+    if (!(len_new > 0) || dot(n_new, s.face_normal[star[i]]) <
+                              s.cos_normal_change * len_new * s.face_length[star[i]]) {
       return out;
     }
     for (int c = 0; c < 3; ++c) {
@@ -159,9 +151,7 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   // Neighbouring panels: the rest of t's faces, unchanged by the collapse.
   for (Index f : s.vertex_faces[t]) {
     const auto& tri = s.faces[f];
-    if (has_corner(tri, v)) continue;
-    areas.push_back(0.5 * norm(cross(s.position[tri[1]] - s.position[tri[0]],
-                                     s.position[tri[2]] - s.position[tri[0]])));
+    if (!has_corner(tri, v)) areas.push_back(0.5 * s.face_length[f]);
   }
   kernel::CollapseQualities q;
   q.shape = shape_new;
@@ -260,7 +250,9 @@ Applied apply_collapse(State& s, Index v, Index t, double& deviation,
   }
   auto& tlist = s.vertex_faces[t];
   for (Index f : from) {
-    if (s.face_alive[f]) tlist.push_back(f);
+    if (!s.face_alive[f]) continue;
+    tlist.push_back(f);
+    update_face_cache(s, f);
   }
   s.vertex_faces[v].clear();
   s.alive[v] = 0;
