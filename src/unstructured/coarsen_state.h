@@ -81,6 +81,9 @@ struct State {
   // Per vertex: the size gate's edge h0 c s, graded so that it grows by at most kGrading per
   // metre (neighbouring panels then differ little in area even where the field jumps), m.
   std::vector<double> gate_h;
+  // Per vertex, the scoring's sizes as inverse squares (the scoring compares squared sizes and
+  // then multiplies instead of dividing): 1 / (h0 c)^2 and 1 / gate_h^2, 1/m^2.
+  std::vector<double> inv_hc2, inv_hg2;
   std::vector<Vec3d> rest_normal;  // per vertex: mean normal of its fine faces (unit)
 
   // The mesh. Per vertex (fine numbering).
