@@ -213,7 +213,7 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   }
   kernel::CollapseQualities q;
   q.shape = shape_new;
-  q.area_ratio = area_hi > 0 ? area_lo / area_hi : 0;  // kernel::area_ratio_quality
+  q.area_ratio = kernel::area_ratio_quality(area_lo, area_hi);
   q.curvature = kernel::size_quality(std::sqrt(r2_curv));
   q.sources = kernel::size_quality(std::sqrt(r2_src));
   out.target = t;
