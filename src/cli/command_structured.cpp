@@ -211,8 +211,11 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                                         : "full hull, no flag");
     std::printf("  quads with side ratio < %.3g: %.1f%% (max %.3g)\n", qo.rules.max_side_ratio,
                 100 * quality.side_ratio_share, quality.max_side_ratio);
-    std::printf("  panels with every neighbour's area ratio < %.3g: %.1f%% (max %.3g)\n",
-                qo.rules.max_area_ratio, 100 * quality.area_ratio_share, quality.max_area_ratio);
+    std::printf(
+        "  panels with every neighbour's area ratio < %.3g: %.1f%% (max %.3g); neighbour pairs: "
+        "%.1f%%\n",
+        qo.rules.max_area_ratio, 100 * quality.area_ratio_share, quality.max_area_ratio,
+        100 * quality.area_ratio_pair_share);
     std::printf("  neighbour normals within %.3g deg (away from knuckles): %.1f%% (max %.3g)\n",
                 qo.rules.max_normal_angle_deg, 100 * quality.normal_angle_share,
                 quality.max_normal_angle_deg);

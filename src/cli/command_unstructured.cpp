@@ -248,8 +248,8 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
     std::printf("  quality index: mean %.3f, min %.3f\n", r.mean_quality, r.min_quality);
     std::printf("  triangles with all angles >= 30 deg: %.1f%%; min angle %.1f deg\n",
                 100 * quality.triangle_angle_share, quality.min_triangle_angle_deg);
-    std::printf("  panels with every neighbour's area ratio < 2: %.1f%%\n",
-                100 * quality.area_ratio_share);
+    std::printf("  panels with every neighbour's area ratio < 2: %.1f%%; neighbour pairs: %.1f%%\n",
+                100 * quality.area_ratio_share, 100 * quality.area_ratio_pair_share);
     std::printf(
         "  deviation from the NURBS: max %.3g m at (%.4g, %.4g, %.4g) (bound %.3g m), "
         "mean %.3g m\n",

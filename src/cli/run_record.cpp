@@ -77,6 +77,7 @@ ordered_json quality_summary(const QualityReport& r, const QualityRules& rules) 
           {"side_ratio_share", r.side_ratio_share},
           {"max_side_ratio", r.max_side_ratio},
           {"area_ratio_share", r.area_ratio_share},
+          {"area_ratio_pair_share", r.area_ratio_pair_share},
           {"max_area_ratio", r.max_area_ratio},
           {"normal_angle_share", r.normal_angle_share},
           {"max_normal_angle_deg", r.max_normal_angle_deg},

@@ -72,4 +72,16 @@ void measure_neighbours(const SurfaceMesh& mesh, const EdgeAdjacency& adj,
   for (std::uint8_t k : knuckle) r.knuckle_edges += k;
 }
 
+double area_ratio_pair_share(const EdgeAdjacency& adj, const FaceQuality& fq, double limit) {
+  std::size_t pairs = 0, ok = 0;
+  for (const MeshEdge& m : adj.edges) {
+    if (m.uses != 2) continue;
+    const Index f = m.first_slot / 4, g = adj.opposite_face[m.first_slot];
+    const double lo = std::min(fq.area[f], fq.area[g]), hi = std::max(fq.area[f], fq.area[g]);
+    ++pairs;
+    ok += lo > hi / kHugeRatio && hi / lo < limit;
+  }
+  return pairs ? static_cast<double>(ok) / static_cast<double>(pairs) : 1.0;
+}
+
 }  // namespace hm

@@ -38,7 +38,10 @@ std::string to_json(const QualityReport& r, const QualityRules& rules, int inden
       {"side_ratio",
        {{"limit", rules.max_side_ratio}, {"share", r.side_ratio_share}, {"max", r.max_side_ratio}}},
       {"area_ratio",
-       {{"limit", rules.max_area_ratio}, {"share", r.area_ratio_share}, {"max", r.max_area_ratio}}},
+       {{"limit", rules.max_area_ratio},
+        {"share", r.area_ratio_share},
+        {"pair_share", r.area_ratio_pair_share},
+        {"max", r.max_area_ratio}}},
       {"normal_angle_deg",
        {{"limit", rules.max_normal_angle_deg},
         {"share", r.normal_angle_share},
@@ -107,7 +110,8 @@ std::string format_table(const QualityReport& r, const QualityRules& rules) {
   s += rule_row("quad side ratio < limit", r.side_ratio_share, rules.min_side_ratio_share,
                 f("max %.3g (limit %g)", r.max_side_ratio, rules.max_side_ratio));
   s += rule_row("neighbour area ratio < limit", r.area_ratio_share, rules.min_area_ratio_share,
-                f("max %.3g (limit %g)", r.max_area_ratio, rules.max_area_ratio));
+                f("max %.3g (limit %g); %.1f%% of neighbour pairs", r.max_area_ratio,
+                  rules.max_area_ratio, 100 * r.area_ratio_pair_share));
   s += rule_row("neighbour normal angle", r.normal_angle_share, rules.min_normal_angle_share,
                 f("max %.3g deg (limit %g; %zu knuckle edges)", r.max_normal_angle_deg,
                   rules.max_normal_angle_deg, r.knuckle_edges));

@@ -147,6 +147,10 @@ struct QualityReport {
   // Shares of the panels meeting each rule (1 when no panel is concerned).
   double side_ratio_share = 1, area_ratio_share = 1, normal_angle_share = 1,
          triangle_angle_share = 1;
+  // Of neighbour pairs (edges between two panels), the share whose area ratio is under the
+  // limit: the per-pair measure some rules state, laxer than area_ratio_share's per-panel one
+  // (a panel passes only when every neighbour does).
+  double area_ratio_pair_share = 1;
   double max_side_ratio = 0, max_area_ratio = 0, max_normal_angle_deg = 0;
   double min_triangle_angle_deg = 0;
   double min_equilateral = 0, mean_equilateral = 0;  // over triangles

@@ -25,6 +25,9 @@ std::vector<std::uint8_t> knuckle_mask(const EdgeAdjacency& adj, const FaceQuali
                                        const QualityOptions& o);
 void measure_neighbours(const SurfaceMesh& mesh, const EdgeAdjacency& adj,
                         const std::vector<std::uint8_t>& knuckle, QualityReport& report);
+// Share of the edges between two panels whose larger area is under `limit` times the smaller
+// (1 when there is no such edge).
+double area_ratio_pair_share(const EdgeAdjacency& adj, const FaceQuality& fq, double limit);
 
 // topology_checks.cpp
 void check_topology(const SurfaceMesh& mesh, const EdgeAdjacency& adj, const ResolvedSettings& s,

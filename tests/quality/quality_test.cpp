@@ -187,8 +187,23 @@ TEST(Quality, NeighbourAreaRatioOnAGradedStrip) {
     EXPECT_NEAR(r.max_area_ratio, growth, 1e-12);
     for (int f = 0; f < n; ++f) EXPECT_NEAR(r.per_face.neighbour_area_ratio[f], growth, 1e-12);
     EXPECT_EQ(r.area_ratio_share, growth < 2 ? 1.0 : 0.0);
+    EXPECT_EQ(r.area_ratio_pair_share, growth < 2 ? 1.0 : 0.0);
     EXPECT_EQ(r.max_normal_angle_deg, 0.0);
   }
+}
+
+TEST(Quality, AreaRatioPerPairCountsEdgesWherePerPanelCountsPanels) {
+  // Four unit-width cells along x of widths 1, 1, 1, 3: only the last pair breaks the rule.
+  // Per panel the last two fail (each has that neighbour); per pair one of three edges fails.
+  const double edges[] = {0, 1, 2, 3, 6};
+  const SurfaceMesh m = test::grid_mesh(4, 1, [&](double s, double t) {
+    return Vec3d{edges[int(std::lround(4 * s))], t, 0};
+  });
+  const QualityReport r = assess_quality(m, {});
+  EXPECT_NEAR(r.area_ratio_share, 0.5, 1e-12);
+  EXPECT_NEAR(r.area_ratio_pair_share, 2.0 / 3.0, 1e-12);
+  const auto j = nlohmann::json::parse(to_json(r, QualityRules{}));
+  EXPECT_NEAR(j["rules"]["area_ratio"]["pair_share"].get<double>(), 2.0 / 3.0, 1e-12);
 }
 
 TEST(Quality, NormalAngleBetweenNeighboursAwayFromKnuckles) {
