@@ -336,7 +336,7 @@ void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& a
                   "Fine chord tolerance, m (default 1e-4 L)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--improve-passes", c->coarsen.improve_passes,
-                  "Passes of edge flips and smoothing after the collapses (default 4)")
+                  "Passes of edge flips and smoothing after the collapses (default 8)")
       ->check(CLI::Range(0, 100));
   cmd->add_flag("--serial", c->coarsen.serial_reference,
                 "One collapse at a time from a priority queue (the reference)");

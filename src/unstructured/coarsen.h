@@ -68,8 +68,10 @@ struct CoarsenOptions {
   double curvature_length = 0;
   // A collapse may turn no panel normal by more than this (degrees).
   double max_normal_change_deg = 40;
-  // Passes of edge flips and tangential smoothing after the collapses.
-  int improve_passes = 4;
+  // Passes of edge flips and tangential smoothing after the collapses. The smoothing settles
+  // slowly (each pass moves about 85% as many vertices as the one before): on kcs.iges at 4,000
+  // panels 4 passes leave 93.6% of triangles at 30 degrees or more, 8 leave 96.4%.
+  int improve_passes = 8;
   // The reference: one collapse at a time from a serial priority queue (tests compare against
   // it); otherwise batches of independent collapses run in parallel.
   bool serial_reference = false;
