@@ -10,6 +10,7 @@
 #include "core/bbox.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "structured/nearest_on_lines.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -27,105 +28,11 @@ constexpr double kGrading = 0.3;
 // A cut station taken from a vertex's x sits this far (relative to L) beside it.
 constexpr double kOffVertex = 1e-5;
 
-// The segments of a section's polylines in a uniform (y, z) grid, for nearest-point queries
-// that look only at the cells around the query (the section lies in one station plane, so the
-// (y, z) distance bounds the 3D one from below).
-struct LineGrid {
-  struct Seg {
-    Vec3d a, d;  // from a to a + d; d zero for a lone point
-  };
-  std::vector<Seg> segs;
-  double y0 = 0, z0 = 0, cell = 1;
-  int ny = 0, nz = 0;
-  std::vector<Index> first, items;  // cell (i, j) holds items[first[i + ny j] .. first[... + 1])
-
-  void build(const std::vector<std::vector<Vec3d>>& lines) {
-    segs.clear();
-    BBox3d box;
-    for (const std::vector<Vec3d>& l : lines) {
-      for (std::size_t i = 0; i < l.size(); ++i) {
-        segs.push_back({l[i], i + 1 < l.size() ? l[i + 1] - l[i] : Vec3d{0, 0, 0}});
-        box.add(l[i]);
-      }
-    }
-    if (segs.empty()) return;
-    // About one segment per cell along the curve, within a capped number of cells.
-    const double ey = box.hi.y - box.lo.y, ez = box.hi.z - box.lo.z;
-    const double span = std::max({ey, ez, 1e-300});
-    cell = std::max(span / 256, (ey + ez) / static_cast<double>(segs.size()));
-    if (!(cell > 0)) cell = 1;
-    y0 = box.lo.y;
-    z0 = box.lo.z;
-    ny = static_cast<int>(ey / cell) + 1;
-    nz = static_cast<int>(ez / cell) + 1;
-    std::vector<Index> count(static_cast<std::size_t>(ny) * nz + 1, 0);
-    auto for_cells = [&](const Seg& sg, auto&& f) {
-      const Vec3d b = sg.a + sg.d;
-      const int i0 = cell_y(std::min(sg.a.y, b.y)), i1 = cell_y(std::max(sg.a.y, b.y));
-      const int j0 = cell_z(std::min(sg.a.z, b.z)), j1 = cell_z(std::max(sg.a.z, b.z));
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(i) + ny * j);
-    };
-    for (const Seg& sg : segs) for_cells(sg, [&](std::size_t c) { ++count[c + 1]; });
-    for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
-    first = count;
-    items.resize(count.back());
-    for (std::size_t k = 0; k < segs.size(); ++k) {
-      for_cells(segs[k], [&](std::size_t c) { items[count[c]++] = static_cast<Index>(k); });
-    }
-  }
-  int cell_y(double y) const { return std::clamp(static_cast<int>((y - y0) / cell), 0, ny - 1); }
-  int cell_z(double z) const { return std::clamp(static_cast<int>((z - z0) / cell), 0, nz - 1); }
-
-  // The point of the polylines nearest q (q itself when there are none). Rings of cells around
-  // q's cell are searched until the best distance is within the ring: any segment not yet seen
-  // lies farther in (y, z) alone. Segments are compared in index order on ties, as a scan of
-  // all would.
-  Vec3d nearest(const Vec3d& q) const {
-    Vec3d best = q;
-    if (segs.empty()) return best;
-    double best_d = std::numeric_limits<double>::infinity();
-    Index best_k = kInvalid;
-    const int ci = cell_y(q.y), cj = cell_z(q.z);
-    // q may lie outside the grid: distances then count from the grid's edge.
-    const double out_y = std::max({y0 - q.y, q.y - (y0 + ny * cell), 0.0});
-    const double out_z = std::max({z0 - q.z, q.z - (z0 + nz * cell), 0.0});
-    for (int r = 0;; ++r) {
-      for (int j = cj - r; j <= cj + r; ++j) {
-        if (j < 0 || j >= nz) continue;
-        const bool edge_row = j == cj - r || j == cj + r;
-        for (int i = ci - r; i <= ci + r; i += edge_row ? 1 : 2 * std::max(r, 1)) {
-          if (i < 0 || i >= ny) continue;
-          const std::size_t c = static_cast<std::size_t>(i) + ny * j;
-          for (Index t = first[c]; t < first[c + 1]; ++t) {
-            const Index k = items[t];
-            const Seg& sg = segs[k];
-            const double dd = squared_norm(sg.d);
-            const double f = dd > 0 ? std::clamp(dot(q - sg.a, sg.d) / dd, 0.0, 1.0) : 0.0;
-            const Vec3d p = sg.a + sg.d * f;
-            const double dist = squared_norm(p - q);
-            if (dist < best_d || (dist == best_d && k < best_k)) {
-              best_d = dist;
-              best_k = k;
-              best = p;
-            }
-          }
-          if (r == 0) break;
-        }
-      }
-      // A cell beyond ring r lies at least r cells farther in y or in z.
-      const double far_y = out_y + r * cell, far_z = out_z + r * cell;
-      const double reach2 = std::min(far_y * far_y + out_z * out_z, out_y * out_y + far_z * far_z);
-      if (best_d <= reach2 || (r >= ny && r >= nz)) return best;
-    }
-  }
-};
-
 struct Sample {
   double x = 0;
   std::vector<Vec3d> points;              // subsampled section points, every polyline
   std::vector<std::vector<Vec3d>> lines;  // the section polylines, whole
-  LineGrid grid;                          // of lines
+  NearestOnLines grid;                    // of lines
   bool empty() const { return points.empty(); }
 };
 
