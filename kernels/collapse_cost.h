@@ -27,8 +27,6 @@ inline double size_quality(double r) { return r >= 2 ? 0.0 : (r <= 0 ? 1.0 : 1.0
 // q2, the area ratio of neighbouring panels: smallest area over largest among `areas` (the
 // panels around the vertex that survives a collapse). 1 when all are equal, 0 when one is zero.
 double area_ratio_quality(std::span<const double> areas);
-// The same from the smallest and largest of the areas, for callers that keep a running min/max.
-inline double area_ratio_quality(double lo, double hi) { return hi > 0 ? lo / hi : 0; }
 
 // The paper's weighted index q = sum_i (w_i q_i) / n over n = 4 criteria (shape, area ratio,
 // curvature size, source size).

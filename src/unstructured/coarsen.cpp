@@ -369,13 +369,6 @@ CoarsenedMesh coarsen(std::span<const Patch> patches, const SurfaceMesh& fine,
     s.gate_h[v] = s.field.h0 * s.cfactor[v] * s.field.source_factor(s.position[v]);
   });
   grade_sizes(s, kGrading, s.gate_h);
-  s.inv_hc2.resize(s.position.size());
-  s.inv_hg2.resize(s.position.size());
-  parallel_for(0, s.gate_h.size(), [&](std::size_t v) {
-    const double hc = s.field.h0 * s.cfactor[v];
-    s.inv_hc2[v] = 1 / (hc * hc);
-    s.inv_hg2[v] = 1 / (s.gate_h[v] * s.gate_h[v]);
-  });
 
   Run run{s, options, target, options.panel_size > 0 && target == 0, {}, kFirstLevel, report};
   run.cand.resize(s.position.size());

@@ -78,10 +78,6 @@ void build_state(std::span<const Patch> patches, const SurfaceMesh& fine,
   for (std::size_t f = 0; f < nf; ++f) {
     for (int c = 0; c < 3; ++c) s.vertex_faces[s.faces[f][c]].push_back(static_cast<Index>(f));
   }
-  s.face_normal.resize(nf);
-  s.face_length.resize(nf);
-  s.face_shape.resize(nf);
-  parallel_for(0, nf, [&](std::size_t f) { update_face_cache(s, static_cast<Index>(f)); });
   s.rest_normal.assign(nv, Vec3d{});
   parallel_for(0, nv, [&](std::size_t v) {
     Vec3d n;
@@ -143,14 +139,6 @@ void build_state(std::span<const Patch> patches, const SurfaceMesh& fine,
     }
   }
   std::sort(s.corner_edges.begin(), s.corner_edges.end());
-}
-
-void update_face_cache(State& s, Index f) {
-  const auto& t = s.faces[f];
-  const Vec3d &a = s.position[t[0]], &b = s.position[t[1]], &c = s.position[t[2]];
-  s.face_normal[f] = cross(b - a, c - a);
-  s.face_length[f] = norm(s.face_normal[f]);
-  s.face_shape[f] = kernel::triangle_shape(a, b, c);
 }
 
 bool is_feature_edge(const State& s, Index a, Index b) {

@@ -81,9 +81,6 @@ struct State {
   // Per vertex: the size gate's edge h0 c s, graded so that it grows by at most kGrading per
   // metre (neighbouring panels then differ little in area even where the field jumps), m.
   std::vector<double> gate_h;
-  // Per vertex, the scoring's sizes as inverse squares (the scoring compares squared sizes and
-  // then multiplies instead of dividing): 1 / (h0 c)^2 and 1 / gate_h^2, 1/m^2.
-  std::vector<double> inv_hc2, inv_hg2;
   std::vector<Vec3d> rest_normal;  // per vertex: mean normal of its fine faces (unit)
 
   // The mesh. Per vertex (fine numbering).
@@ -98,12 +95,6 @@ struct State {
   std::vector<PatchId> face_patch;
   std::vector<std::uint8_t> face_alive;
   std::size_t live_faces = 0;
-  // Per face, kept by the collapses (the scoring reads them instead of recomputing each panel
-  // for every candidate around it); stale after improve_panels, which does not read them:
-  // (b - a) x (c - a) (m^2, its length twice the area), that length, and the triangle shape.
-  std::vector<Vec3d> face_normal;
-  std::vector<double> face_length;
-  std::vector<double> face_shape;
 
   // Features: kind per vertex; for on-line vertices the neighbours along the line (prev, next in
   // the fine line's order); feature edges joining two corners (sorted pairs).
@@ -120,9 +111,6 @@ struct State {
   std::vector<std::uint8_t> is_witness;  // per fine vertex: in some face's list
   double max_witness_distance = 0;       // m, largest accepted
 };
-
-// Recomputes face_normal, face_length and face_shape of face f from the positions.
-void update_face_cache(State& s, Index f);
 
 // Builds the state from the fine mesh and its features. Throws GeometryError on a non-manifold
 // or inconsistent input.

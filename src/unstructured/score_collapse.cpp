@@ -2,7 +2,6 @@
 // topology, folds, slivers) and the paper's weighted index q of the panels it makes.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include "kernels/collapse_cost.h"
@@ -70,66 +69,25 @@ void collapse_region(const State& s, Index v, Index t, std::span<Index> out) {
 
 namespace {
 
-// What every target of v shares, gathered once per vertex so that scoring a target reads only
-// this and t's own data: per face of v, its corner positions (v's slot is replaced by t when a
-// target is scored), its cached normal, the rest normals of its other two corners where they
-// are smooth, and the largest inverse squared sizes among v and those corners (the smallest
-// sizes: a panel is held to the smallest size at its corners).
-struct StarFace {
-  Vec3d p[3];
-  Vec3d normal;   // (b - a) x (c - a) of the face as it is
-  Vec3d rest[2];  // rest normals of other[0], other[1] (read only where smooth)
-  double length;
-  double inv_hc2, inv_hg2;
-  Index other[2];  // the two corners other than v
-  Index face;
-  std::uint8_t v_slot;
-  std::uint8_t smooth;  // bit k: other[k] is a smooth vertex
-};
-
+// What every target of v shares: v's ring, and the shape and normal of each of its faces.
 struct Star {
   std::vector<Index> ring;
-  std::vector<StarFace> faces;
+  std::vector<Vec3d> normal;  // unnormalised, per face of v
+  std::vector<double> length;
   double shape_min = 1;
 };
 
 void star_of(const State& s, Index v, Star& st) {
-  st.ring.clear();
+  ring_of(s, v, st.ring);
+  st.normal.clear();
+  st.length.clear();
   st.shape_min = 1;
-  const auto& star = s.vertex_faces[v];
-  st.faces.resize(star.size());
-  for (std::size_t i = 0; i < star.size(); ++i) {
-    const Index f = star[i];
+  for (Index f : s.vertex_faces[v]) {
     const auto& tri = s.faces[f];
-    StarFace& sf = st.faces[i];
-    sf.face = f;
-    sf.other[0] = sf.other[1] = kInvalid;
-    sf.v_slot = 0;
-    sf.smooth = 0;
-    sf.inv_hc2 = s.inv_hc2[v];
-    sf.inv_hg2 = s.inv_hg2[v];
-    int n = 0;
-    for (int c = 0; c < 3; ++c) {
-      const Index w = tri[c];
-      sf.p[c] = s.position[w];
-      if (w == v) {
-        sf.v_slot = static_cast<std::uint8_t>(c);
-        continue;
-      }
-      if (std::find(st.ring.begin(), st.ring.end(), w) == st.ring.end()) st.ring.push_back(w);
-      sf.inv_hc2 = std::max(sf.inv_hc2, s.inv_hc2[w]);
-      sf.inv_hg2 = std::max(sf.inv_hg2, s.inv_hg2[w]);
-      if (n == 2) continue;  // a face with v on one corner only has two others
-      sf.other[n] = w;
-      if (s.kind[w] == Kind::kSmooth) {
-        sf.smooth |= static_cast<std::uint8_t>(1u << n);
-        sf.rest[n] = s.rest_normal[w];
-      }
-      ++n;
-    }
-    sf.normal = s.face_normal[f];
-    sf.length = s.face_length[f];
-    st.shape_min = std::min(st.shape_min, s.face_shape[f]);
+    const Vec3d &a = s.position[tri[0]], &b = s.position[tri[1]], &c = s.position[tri[2]];
+    st.shape_min = std::min(st.shape_min, kernel::triangle_shape(a, b, c));
+    st.normal.push_back(cross(b - a, c - a));
+    st.length.push_back(norm(st.normal.back()));
   }
 }
 
@@ -139,11 +97,12 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   Candidate out;
   if (!feature_allows(s, v, t)) return out;
   thread_local std::vector<Index> ring_t;
-  auto on_edge_vt = [t](const StarFace& sf) { return sf.other[0] == t || sf.other[1] == t; };
+  thread_local std::vector<double> areas;
+  const auto& star = s.vertex_faces[v];
   int on_edge = 0;
-  for (const StarFace& sf : st.faces) on_edge += on_edge_vt(sf);
+  for (Index f : star) on_edge += has_corner(s.faces[f], t);
   if (on_edge == 0 || on_edge > 2) return out;
-  if (st.faces.size() <= static_cast<std::size_t>(on_edge)) return out;
+  if (star.size() <= static_cast<std::size_t>(on_edge)) return out;
   if (check_link) {
     // Link condition: v and t share exactly the apexes of the faces on edge v-t, so the collapse
     // keeps the surface a manifold.
@@ -160,60 +119,53 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   constexpr double kEdge2PerNormal = 2.0 / std::numbers::sqrt3;
   constexpr double kShapePerNormal = 2.0 * std::numbers::sqrt3;
   const bool has_sources = s.field.w_sources > 0 && !s.field.sources.empty();
-  const double inv_h02 = 1 / (s.field.h0 * s.field.h0);
-  const Vec3d& pt = s.position[t];
-  const bool t_smooth = s.kind[t] == Kind::kSmooth;
-  const Vec3d& rest_t = s.rest_normal[t];
-  const double inv_hc2_t = s.inv_hc2[t], inv_hg2_t = s.inv_hg2[t];
   double shape_new = 1;
   double r2_curv = 0, r2_src = 0, r2_all = 0;
-  // Smallest and largest area among the panels the collapse makes and t's other faces (q2).
-  double area_lo = std::numeric_limits<double>::infinity(), area_hi = 0;
-  Index gone[2] = {kInvalid, kInvalid};  // the faces on edge v-t, which the collapse removes
-  int n_gone = 0;
-  for (const StarFace& sf : st.faces) {
-    if (on_edge_vt(sf)) {
-      gone[n_gone++] = sf.face;
-      continue;
-    }
-    Vec3d p[3] = {sf.p[0], sf.p[1], sf.p[2]};
-    p[sf.v_slot] = pt;
-    const Vec3d &p0 = p[0], &p1 = p[1], &p2 = p[2];
+  areas.clear();
+  for (std::size_t i = 0; i < star.size(); ++i) {
+    const auto& tri = s.faces[star[i]];
+    if (has_corner(tri, t)) continue;
+    Index w[3];
+    for (int c = 0; c < 3; ++c) w[c] = tri[c] == v ? t : tri[c];
+    const Vec3d &p0 = s.position[w[0]], &p1 = s.position[w[1]], &p2 = s.position[w[2]];
     const Vec3d n_new = cross(p1 - p0, p2 - p0);
     const double len_new = norm(n_new);
-    if (!(len_new > 0) || dot(n_new, sf.normal) < s.cos_normal_change * len_new * sf.length) {
+    if (!(len_new > 0) || dot(n_new, st.normal[i]) < s.cos_normal_change * len_new * st.length[i]) {
       return out;
     }
-    const double rest_min = kRestNormalCos * len_new;
-    if ((t_smooth && dot(n_new, rest_t) < rest_min) ||
-        ((sf.smooth & 1u) && dot(n_new, sf.rest[0]) < rest_min) ||
-        ((sf.smooth & 2u) && dot(n_new, sf.rest[1]) < rest_min)) {
-      return out;
+    for (int c = 0; c < 3; ++c) {
+      if (s.kind[w[c]] == Kind::kSmooth &&
+          dot(n_new, s.rest_normal[w[c]]) < kRestNormalCos * len_new) {
+        return out;
+      }
     }
     const double l2sum = squared_norm(p1 - p0) + squared_norm(p2 - p1) + squared_norm(p0 - p2);
     shape_new = std::min(shape_new, std::min(1.0, kShapePerNormal * len_new / l2sum));
-    area_lo = std::min(area_lo, 0.5 * len_new);
-    area_hi = std::max(area_hi, 0.5 * len_new);
+    areas.push_back(0.5 * len_new);
+    const double cf = std::min({s.cfactor[v], s.cfactor[w[0]], s.cfactor[w[1]], s.cfactor[w[2]]});
+    const double hg = std::min({s.gate_h[v], s.gate_h[w[0]], s.gate_h[w[1]], s.gate_h[w[2]]});
     const double l2 = kEdge2PerNormal * len_new;
-    r2_curv = std::max(r2_curv, l2 * std::max(sf.inv_hc2, inv_hc2_t));
-    r2_all = std::max(r2_all, l2 * std::max(sf.inv_hg2, inv_hg2_t));
+    const double hc = s.field.h0 * cf;
+    r2_curv = std::max(r2_curv, l2 / (hc * hc));
+    r2_all = std::max(r2_all, l2 / (hg * hg));
     if (has_sources) {
       const double hs = s.field.h0 * s.field.source_factor((p0 + p1 + p2) / 3.0);
       r2_src = std::max(r2_src, l2 / (hs * hs));
     } else {
-      r2_src = std::max(r2_src, l2 * inv_h02);
+      r2_src = std::max(r2_src, l2 / (s.field.h0 * s.field.h0));
     }
   }
   if (shape_new < std::min(kSliverShape, st.shape_min)) return out;
   // Neighbouring panels: the rest of t's faces, unchanged by the collapse.
   for (Index f : s.vertex_faces[t]) {
-    if (f == gone[0] || f == gone[1]) continue;
-    area_lo = std::min(area_lo, 0.5 * s.face_length[f]);
-    area_hi = std::max(area_hi, 0.5 * s.face_length[f]);
+    const auto& tri = s.faces[f];
+    if (has_corner(tri, v)) continue;
+    areas.push_back(0.5 * norm(cross(s.position[tri[1]] - s.position[tri[0]],
+                                     s.position[tri[2]] - s.position[tri[0]])));
   }
   kernel::CollapseQualities q;
   q.shape = shape_new;
-  q.area_ratio = kernel::area_ratio_quality(area_lo, area_hi);
+  q.area_ratio = kernel::area_ratio_quality(areas);
   q.curvature = kernel::size_quality(std::sqrt(r2_curv));
   q.sources = kernel::size_quality(std::sqrt(r2_src));
   out.target = t;
@@ -308,9 +260,7 @@ Applied apply_collapse(State& s, Index v, Index t, double& deviation,
   }
   auto& tlist = s.vertex_faces[t];
   for (Index f : from) {
-    if (!s.face_alive[f]) continue;
-    tlist.push_back(f);
-    update_face_cache(s, f);
+    if (s.face_alive[f]) tlist.push_back(f);
   }
   s.vertex_faces[v].clear();
   s.alive[v] = 0;
