@@ -286,7 +286,12 @@ def markdown(rows, meta, repeat, plots):
              f"Run {meta['date']} on {meta['machine']}; wall time {meta.get('wall_s', 0) / 60:.1f} "
              f"min ({', '.join(f'{k} {v:.0f} s' for k, v in meta.get('section_s', {}).items())}). "
              f"Peers: {meta.get('peers', '')}. Made by `scripts/compare-peers "
-             f"{meta.get('command', '')}`.", ""]
+             f"{meta.get('command', '')}`."]
+    if meta.get("load_avg"):
+        lines[-1] += (" Load average (1 min) before the run and after each section: " +
+                      ", ".join(f"{k} {v:.2f}" for k, v in meta["load_avg"].items()) +
+                      " (2 cores: above about 2.3, something else competed with the tools).")
+    lines.append("")
     lines += goals_lines(goals(rows))
     if plots:
         lines += ["", "## Plots", ""] + [f"![{t}]({f})" for f, t in plots]
@@ -304,13 +309,21 @@ def esc(text):
     return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
-def svg_loglog(title, xlabel, ylabel, series, width=680, height=440):
+def tick(v):
+    """A decade's label: 0.01, 0.1, 1, 10, 100, 1k, 10k, 100k, 1M, 10M."""
+    for unit, suffix in ((1e6, "M"), (1e3, "k")):
+        if v >= unit:
+            return f"{v / unit:g}{suffix}"
+    return f"{v:g}"
+
+
+def svg_loglog(title, xlabel, ylabel, series, width=780, height=440):
     """A log-log plot: every point of each series as a dot, and a line through the series'
     median y at each x. series: {label: [(x, y), ...]}, x and y > 0 (others are left out)."""
     pts = {k: [(x, y) for x, y in v if x and y and x > 0 and y > 0] for k, v in series.items()}
     allx = [x for v in pts.values() for x, _ in v]
     ally = [y for v in pts.values() for _, y in v]
-    left, right, top, bottom = 70, 200, 40, 55
+    left, right, top, bottom = 70, 290, 40, 55
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12">',
            f'<rect width="{width}" height="{height}" fill="white"/>',
@@ -335,12 +348,12 @@ def svg_loglog(title, xlabel, ylabel, series, width=680, height=440):
         x = px(10 ** e)
         out.append(f'<line x1="{x:.1f}" y1="{top}" x2="{x:.1f}" y2="{top + ph}" stroke="#ddd"/>')
         out.append(f'<text x="{x:.1f}" y="{top + ph + 16}" text-anchor="middle">'
-                   f'{esc(f"{10 ** e:g}")}</text>')
+                   f'{tick(10 ** e)}</text>')
     for e in range(y0, y1 + 1):
         y = py(10 ** e)
         out.append(f'<line x1="{left}" y1="{y:.1f}" x2="{left + pw}" y2="{y:.1f}" stroke="#ddd"/>')
         out.append(f'<text x="{left - 6}" y="{y + 4:.1f}" text-anchor="end">'
-                   f'{esc(f"{10 ** e:g}")}</text>')
+                   f'{tick(10 ** e)}</text>')
     out.append(f'<text x="{left + pw / 2}" y="{height - 15}" text-anchor="middle">'
                f'{esc(xlabel)}</text>')
     out.append(f'<text transform="translate(18 {top + ph / 2}) rotate(-90)" '
