@@ -158,6 +158,9 @@ def goals(rows):
             "max_ratio": max(got) if got else None, "behind": behind,
             "hullmesh_failed": [k for k, why in missing if why == "hullmesh failed"],
             "peer_failed": [k for k, why in missing if why == "every peer failed"],
+            # No run at all (a fine mesh hullmesh merge could not make, gmsh unreadable): why.
+            "not_compared": [(k, why) for k, why in missing
+                             if why not in ("hullmesh failed", "every peer failed")],
             "speed_met": bool(got) and not behind and not any(
                 why == "hullmesh failed" for _, why in missing),
             "quality": {k: {"better_or_equal": v[0], "compared": v[1], "worse": v[2]}
@@ -199,6 +202,9 @@ def goals_lines(summary):
                 lines.append(f"- **{g['stage']}**, quality ({label}): hullmesh behind in "
                              f"{v['compared'] - v['better_or_equal']} of {v['compared']} rows: "
                              + "; ".join(v["worse"][:4]) + ("; ..." if len(v["worse"]) > 4 else ""))
+        for k, why in g.get("not_compared", []):
+            missed = True
+            lines.append(f"- {g['stage']}: no comparison on {k}: {why[:200]}")
         if g["peer_failed"]:
             lines.append(f"- {g['stage']}: every peer failed on {', '.join(g['peer_failed'])} "
                          "(not counted for or against)")
@@ -286,7 +292,7 @@ def markdown(rows, meta, repeat, plots):
              f"Run {meta['date']} on {meta['machine']}; wall time {meta.get('wall_s', 0) / 60:.1f} "
              f"min ({', '.join(f'{k} {v:.0f} s' for k, v in meta.get('section_s', {}).items())}). "
              f"Peers: {meta.get('peers', '')}. Made by `scripts/compare-peers "
-             f"{meta.get('command', '')}`."]
+             f"{meta.get('command') or '--sections all'}`."]
     if meta.get("load_avg"):
         lines[-1] += (" Load average (1 min) before the run and after each section: " +
                       ", ".join(f"{k} {v:.2f}" for k, v in meta["load_avg"].items()) +
@@ -379,8 +385,10 @@ def svg_loglog(title, xlabel, ylabel, series, width=780, height=440):
 
 
 def plot_series(rows, section):
-    """{tool: [(size, seconds)]} of a section: x is the faces out for meshing (fine triangles in
-    for coarsening), y the median time (the stage time for coarsening)."""
+    """{tool: [(size, seconds)]} of a section: x is the size asked for (triangles out for
+    meshing, fine triangles for coarsening; the counts each tool reached are in the tables), so
+    that the line through the medians of the inputs at each size is a ladder; y is the median
+    time (the stage time for coarsening)."""
     series = {}
     seen = set()
     for r in rows:
@@ -392,8 +400,6 @@ def plot_series(rows, section):
                 continue  # hullmesh's runs are shared by the case's peer rows
             t = r["tools"][label]
             y = t.get("stage_median_s") if stage else t["median_s"]
-            who = "hullmesh" if label == "hullmesh" else "peer"
-            x = (r.get("fine", {}) if stage else r.get("counts", {})).get(who) or r.get("size")
-            series.setdefault(label, []).append((x, y))
+            series.setdefault(label, []).append((r.get("size"), y))
         seen.add((r["input"], r["size"]))
     return series
