@@ -100,21 +100,22 @@ def stage_ratios(rows, section):
     out = []
     for key, group in by_case.items():
         stage = section == "coarsen"
+
+        def seconds(summary):
+            return summary and (summary.get("stage_median_s") if stage else summary["median_s"])
+
         hm = next((r["tools"]["hullmesh"] for r in group if "hullmesh" in r.get("tools", {})), None)
-        hm_t = hm and (hm.get("stage_median_s") if stage else hm["median_s"])
-        peers = []
-        for r in group:
-            p = r.get("tools", {}).get(r.get("peer"))
-            t = p and (p.get("stage_median_s") if stage else p["median_s"])
-            if t:
-                peers.append((t, r["peer"]))
-        if not hm_t:
+        # Each row against its own hullmesh runs (structured runs hullmesh once per algorithm).
+        peers = [(seconds(r["tools"][r["peer"]]), seconds(r["tools"]["hullmesh"]), r["peer"])
+                 for r in group if r.get("peer") in r.get("tools", {})]
+        peers = [(t, h, label) for t, h, label in peers if t and h]
+        if not seconds(hm) and not peers:
             out.append((key, None, "hullmesh failed" if hm else group[0].get("note", "no run")))
         elif not peers:
             out.append((key, None, "every peer failed"))
         else:
-            t, label = min(peers)
-            out.append((key, t / hm_t, label))
+            t, h, label = min(peers)
+            out.append((key, t / h, label))
     return out
 
 
