@@ -1,18 +1,27 @@
 // hullmesh quality MESH: the panel-code rules, topology, wave resolution and hydrostatics of a
-// mesh (any format read_mesh knows, so meshes of other tools are judged by the same rules).
+// mesh (any format read_mesh knows, so meshes of other tools are judged by the same rules), its
+// minimum-angle distribution and, with --iges, its deviation from the hull's NURBS.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/load_hull.h"
+#include "cli/prepare_hull.h"
+#include "core/bbox.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "quality/hydrostatics.h"
 #include "quality/quality_report.h"
+#include "query/hull_query.h"
+#include "tessellate/tessellate.h"
+#include "unstructured/measure_deviation.h"
 
 namespace hm::cli {
 namespace {
@@ -23,7 +32,99 @@ struct QualityCliOptions {
   std::optional<double> speed, froude, length, waterline_z;
   bool half = false;
   std::string vtu;
+  std::string iges;  // --iges: the hull the mesh was made from, for the deviation
 };
+
+// How the panels' smallest corner angles spread (every panel, triangles and quads alike):
+// shares at or above 20, 30 and 40 degrees and three percentiles.
+struct AngleDistribution {
+  double share_20 = 1, share_30 = 1, share_40 = 1;
+  double p05 = 0, p50 = 0, p95 = 0;  // degrees
+};
+
+AngleDistribution angle_distribution(std::vector<double> min_angle_deg) {
+  AngleDistribution d;
+  if (min_angle_deg.empty()) return d;
+  const auto n = static_cast<double>(min_angle_deg.size());
+  auto share = [&](double limit) {
+    return static_cast<double>(std::count_if(min_angle_deg.begin(), min_angle_deg.end(),
+                                             [&](double a) { return a >= limit; })) /
+           n;
+  };
+  d.share_20 = share(20);
+  d.share_30 = share(30);
+  d.share_40 = share(40);
+  std::sort(min_angle_deg.begin(), min_angle_deg.end());
+  auto percentile = [&](double p) {
+    return min_angle_deg[static_cast<std::size_t>(p * (n - 1) + 0.5)];
+  };
+  d.p05 = percentile(0.05);
+  d.p50 = percentile(0.5);
+  d.p95 = percentile(0.95);
+  return d;
+}
+
+// The mesh against the NURBS of the IGES hull it was made from: the distance of every panel
+// centroid and edge midpoint to the surface (measure_deviation). L is the largest extent of the
+// IGES hull's box. Both must be in metres and in the same frame; a full-hull mesh of a half-hull
+// file is measured against the file's patches and their mirror image about y = 0.
+struct NurbsDeviation {
+  DeviationMeasure measure;
+  double length = 0;      // m
+  bool mirrored = false;  // the patches' mirror image was added
+};
+
+// A mesh further than this share of L from the hull is not of this hull in this frame.
+constexpr double kFarFromHull = 0.05;
+
+NurbsDeviation deviation_from_nurbs(const std::string& iges, const SurfaceMesh& mesh, bool quiet) {
+  ImportResult hull = load_hull(iges, "", quiet);
+  if (hull.patches.empty()) throw InputError(iges + ": no surface to measure the deviation from");
+  NurbsDeviation d;
+  const Vec3d e = hull.bbox.extent();
+  d.length = std::max({e.x, e.y, e.z});
+  BBox3d box;
+  for (const Vec3d& p : mesh.positions) box.add(p);
+  const double tol = 1e-3 * d.length;
+  if (hull.bbox.lo.y > -tol && box.lo.y < -tol) {
+    add_mirror_image(hull);
+    d.mirrored = true;
+  }
+  // The default tessellation suffices: the closest points are refined on the NURBS.
+  const Tessellation t = tessellate(hull.patches, TessellateOptions{}, silent_progress());
+  const HullQuery query(hull.patches, t.mesh);
+  d.measure = measure_deviation(query, mesh);
+  return d;
+}
+
+void print_deviation(const std::string& iges, const NurbsDeviation& d) {
+  const DeviationMeasure& m = d.measure;
+  std::printf("\n  deviation from the NURBS of %s%s\n", iges.c_str(),
+              d.mirrored ? " and its mirror image" : "");
+  if (m.samples == 0) {
+    std::printf("  %-30s n/a: no sample found a closest point\n", "max, mean");
+    return;
+  }
+  std::printf("  %-30s %.4g m (%.3g L) at (%.4g, %.4g, %.4g) m\n", "max", m.max, m.max / d.length,
+              m.where.x, m.where.y, m.where.z);
+  std::printf("  %-30s %.4g m (%.3g L), %zu samples, L = %.4g m\n", "mean", m.mean,
+              m.mean / d.length, m.samples, d.length);
+}
+
+nlohmann::json deviation_json(const std::string& iges, const NurbsDeviation& d) {
+  const DeviationMeasure& m = d.measure;
+  if (m.samples == 0) return {{"iges", iges}, {"samples", 0}, {"max_m", nullptr}};
+  return {{"iges", iges},
+          {"length_m", d.length},
+          {"mirrored", d.mirrored},
+          {"samples", m.samples},
+          {"max_m", m.max},
+          {"mean_m", m.mean},
+          {"max_rel", m.max / d.length},
+          {"mean_rel", m.mean / d.length},
+          {"max_where_m", {m.where.x, m.where.y, m.where.z}},
+          {"far_from_hull", m.max > kFarFromHull * d.length}};
+}
 
 void print_hydrostatics(const Hydrostatics& h) {
   std::printf("\n  hydrostatics at the waterline (mesh)\n");
@@ -61,6 +162,9 @@ int run_quality(const QualityCliOptions& o, const GlobalOptions& g) {
   position.waterline_z = report.topology.waterline_z;
   position.half_hull = report.half_hull;
   const Hydrostatics hydro = hydrostatics_mesh(file.mesh, position);
+  const AngleDistribution angles = angle_distribution(report.per_face.min_angle_deg);
+  std::optional<NurbsDeviation> deviation;
+  if (!o.iges.empty()) deviation = deviation_from_nurbs(o.iges, file.mesh, g.quiet || o.json);
 
   if (o.json) {
     nlohmann::json j = nlohmann::json::parse(to_json(report, q.rules));
@@ -76,11 +180,31 @@ int run_quality(const QualityCliOptions& o, const GlobalOptions& g) {
         {"i_longitudinal_m4", hydro.i_longitudinal},
         {"bm_transverse_m", hydro.bm_transverse},
         {"bm_longitudinal_m", hydro.bm_longitudinal}};
+    j["min_angle_deg"] = {{"share_20", angles.share_20}, {"share_30", angles.share_30},
+                          {"share_40", angles.share_40}, {"p05", angles.p05},
+                          {"p50", angles.p50},           {"p95", angles.p95}};
+    if (deviation) j["deviation"] = deviation_json(o.iges, *deviation);
     std::printf("%s\n", j.dump(2).c_str());
   } else if (!g.quiet) {
     std::printf("%s\n%s", o.file.c_str(), format_table(report, q.rules).c_str());
+    std::printf(
+        "\n  %-30s >= 20: %.1f%%, >= 30: %.1f%%, >= 40: %.1f%%; 5%% / 50%% / 95%%: %.3g / %.3g / "
+        "%.3g deg\n",
+        "panel min angle", 100 * angles.share_20, 100 * angles.share_30, 100 * angles.share_40,
+        angles.p05, angles.p50, angles.p95);
     print_hydrostatics(hydro);
+    if (deviation) print_deviation(o.iges, *deviation);
   }
+  std::fflush(stdout);  // the warnings below go after the report, also when both go to one pipe
+  if (deviation && deviation->measure.samples == 0)
+    std::fprintf(stderr, "hullmesh: warning: no point of %s found a closest point on %s\n",
+                 o.file.c_str(), o.iges.c_str());
+  if (deviation && deviation->measure.max > kFarFromHull * deviation->length)
+    std::fprintf(stderr,
+                 "hullmesh: warning: %s lies up to %.4g m (%.3g L) from the hull of %s: a mesh "
+                 "of another hull, in other units or in another frame (a floating one)?\n",
+                 o.file.c_str(), deviation->measure.max, deviation->measure.max / deviation->length,
+                 o.iges.c_str());
   if (report.waves.warn && !o.json)
     std::fprintf(stderr, "hullmesh: warning: %.3g panels per wavelength (under 10)\n",
                  report.waves.panels_per_wavelength);
@@ -113,6 +237,9 @@ void register_quality(CLI::App& app, const GlobalOptions& global, Action& action
                   "Waterplane z in the mesh frame, m (default: the top of the mesh)");
   cmd->add_flag("--half", opts->half, "The mesh is a half hull (y >= 0), symmetric about y = 0");
   cmd->add_option("-o,--output", opts->vtu, "Write the per-panel measures as cell data (.vtu)");
+  cmd->add_option("--iges", opts->iges,
+                  "The IGES hull the mesh was made from (same frame, metres): adds the deviation "
+                  "of panel centroids and edge midpoints from its NURBS");
   cmd->callback([opts, &global, &action] {
     action = [opts, &global] { return run_quality(*opts, global); };
   });
