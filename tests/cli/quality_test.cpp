@@ -1,6 +1,7 @@
 // `hullmesh quality`: the minimum-angle distribution and, with --iges, the deviation of a mesh
 // from the NURBS of the hull it was made from.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -22,7 +23,9 @@ struct WigleyPanels {
 
 const WigleyPanels& wigley_panels() {
   static const WigleyPanels w = [] {
-    const fs::path dir = test::scratch_dir("cli_quality_iges");
+    // One folder per process: ctest runs each test of this file as a process of its own, in
+    // parallel, and each builds these files once.
+    const fs::path dir = test::scratch_dir("cli_quality_iges_" + std::to_string(::getpid()));
     WigleyPanels p{dir / "wigley.igs", dir / "half.gdf", dir / "full.stl"};
     EXPECT_EQ(run_hullmesh("-q generate wigley --patches 4 -o " + q(p.igs)).exit_code, 0);
     for (const auto& [out, symmetry] : {std::pair{p.half, "auto"}, std::pair{p.full, "full"}}) {
