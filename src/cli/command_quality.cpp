@@ -35,35 +35,6 @@ struct QualityCliOptions {
   std::string iges;  // --iges: the hull the mesh was made from, for the deviation
 };
 
-// How the panels' smallest corner angles spread (every panel, triangles and quads alike):
-// shares at or above 20, 30 and 40 degrees and three percentiles.
-struct AngleDistribution {
-  double share_20 = 1, share_30 = 1, share_40 = 1;
-  double p05 = 0, p50 = 0, p95 = 0;  // degrees
-};
-
-AngleDistribution angle_distribution(std::vector<double> min_angle_deg) {
-  AngleDistribution d;
-  if (min_angle_deg.empty()) return d;
-  const auto n = static_cast<double>(min_angle_deg.size());
-  auto share = [&](double limit) {
-    return static_cast<double>(std::count_if(min_angle_deg.begin(), min_angle_deg.end(),
-                                             [&](double a) { return a >= limit; })) /
-           n;
-  };
-  d.share_20 = share(20);
-  d.share_30 = share(30);
-  d.share_40 = share(40);
-  std::sort(min_angle_deg.begin(), min_angle_deg.end());
-  auto percentile = [&](double p) {
-    return min_angle_deg[static_cast<std::size_t>(p * (n - 1) + 0.5)];
-  };
-  d.p05 = percentile(0.05);
-  d.p50 = percentile(0.5);
-  d.p95 = percentile(0.95);
-  return d;
-}
-
 // The mesh against the NURBS of the IGES hull it was made from: the distance of every panel
 // centroid and edge midpoint to the surface (measure_deviation). L is the largest extent of the
 // IGES hull's box. Both must be in metres and in the same frame; a full-hull mesh of a half-hull
@@ -162,7 +133,7 @@ int run_quality(const QualityCliOptions& o, const GlobalOptions& g) {
   position.waterline_z = report.topology.waterline_z;
   position.half_hull = report.half_hull;
   const Hydrostatics hydro = hydrostatics_mesh(file.mesh, position);
-  const AngleDistribution angles = angle_distribution(report.per_face.min_angle_deg);
+  const AngleDistribution& angles = report.min_angle;
   std::optional<NurbsDeviation> deviation;
   if (!o.iges.empty()) deviation = deviation_from_nurbs(o.iges, file.mesh, g.quiet || o.json);
 

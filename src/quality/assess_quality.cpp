@@ -130,6 +130,7 @@ QualityReport assess_quality(const SurfaceMesh& mesh, const QualityOptions& o) {
   r.side_ratio_share = shares.side_ratio;
   r.area_ratio_share = shares.area_ratio;
   r.area_ratio_pair_share = area_ratio_pair_share(adj, r.per_face, o.rules.max_area_ratio);
+  r.min_angle = angle_distribution(r.per_face.min_angle_deg);
   r.normal_angle_share = shares.normal_angle;
   r.triangle_angle_share = shares.triangle_angle;
   r.worst = worst_panels(r, o, free_face, nonmanifold_face);

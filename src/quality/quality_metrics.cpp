@@ -63,6 +63,28 @@ void measure_faces(const SurfaceMesh& mesh, const QualityOptions& o, QualityRepo
   }
 }
 
+AngleDistribution angle_distribution(std::vector<double> min_angle_deg) {
+  AngleDistribution d;
+  if (min_angle_deg.empty()) return d;
+  const auto n = static_cast<double>(min_angle_deg.size());
+  auto share = [&](double limit) {
+    return static_cast<double>(std::count_if(min_angle_deg.begin(), min_angle_deg.end(),
+                                             [&](double a) { return a >= limit; })) /
+           n;
+  };
+  d.share_20 = share(20);
+  d.share_30 = share(30);
+  d.share_40 = share(40);
+  std::sort(min_angle_deg.begin(), min_angle_deg.end());
+  auto percentile = [&](double p) {
+    return min_angle_deg[static_cast<std::size_t>(p * (n - 1) + 0.5)];
+  };
+  d.p05 = percentile(0.05);
+  d.p50 = percentile(0.5);
+  d.p95 = percentile(0.95);
+  return d;
+}
+
 RuleShares rule_shares(const FaceQuality& fq, const QualityRules& rules) {
   std::size_t quads = 0, quads_ok = 0, with_nb = 0, area_ok = 0, with_angle = 0, angle_ok = 0,
               tris = 0, tris_ok = 0;

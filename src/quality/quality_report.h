@@ -87,6 +87,13 @@ enum class QualityRule : std::uint8_t {
 };
 const char* to_string(QualityRule r);
 
+// How the panels' smallest corner angles spread (every panel, triangles and quads alike): shares
+// at or above 20, 30 and 40 degrees and three percentiles (degrees).
+struct AngleDistribution {
+  double share_20 = 1, share_30 = 1, share_40 = 1;
+  double p05 = 0, p50 = 0, p95 = 0;
+};
+
 struct WorstPanel {
   Index face = kInvalid;
   Vec3d centroid;
@@ -153,6 +160,7 @@ struct QualityReport {
   double area_ratio_pair_share = 1;
   double max_side_ratio = 0, max_area_ratio = 0, max_normal_angle_deg = 0;
   double min_triangle_angle_deg = 0;
+  AngleDistribution min_angle;
   double min_equilateral = 0, mean_equilateral = 0;  // over triangles
   double max_warp = 0, max_warp_angle_deg = 0, max_aspect_ratio = 0;
   std::size_t non_convex = 0, zero_area = 0, close_centre_pairs = 0, knuckle_edges = 0;

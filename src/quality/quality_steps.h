@@ -45,5 +45,6 @@ struct RuleShares {
   double max_warp = 0;
 };
 RuleShares rule_shares(const FaceQuality& fq, const QualityRules& rules);
+AngleDistribution angle_distribution(std::vector<double> min_angle_deg);
 
 }  // namespace hm
