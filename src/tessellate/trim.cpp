@@ -54,19 +54,6 @@ std::uint8_t side_flags(const NurbsSurface& s, const Vec2d& w) {
 
 }  // namespace
 
-bool inside_loops(const std::vector<std::vector<Vec2d>>& loops, const Vec2d& q) {
-  bool in = false;
-  for (const auto& l : loops) {
-    for (std::size_t i = 0, j = l.size() - 1; i < l.size(); j = i++) {
-      const Vec2d& a = l[i];
-      const Vec2d& b = l[j];
-      if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x)
-        in = !in;
-    }
-  }
-  return in;
-}
-
 PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double tol) {
   const NurbsSurface& s = p.surface;
   const double speed = std::max({lines.speed_u, lines.speed_v, 1e-300});
@@ -105,10 +92,11 @@ PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double 
   const std::size_t nu = lines.u.size(), nv = lines.v.size();
   std::vector<std::uint8_t> keep(nu * nv, 0);
   const double clearance = kLoopClearance * h;
-  // Row by row: every point of a grid row has the same scaled v, so the loop edges that cross
-  // the row (for the even-odd inside test) and those that come within the clearance of it are
-  // found once per row, not once per point. The arithmetic per point and edge is inside_loops'
-  // and segment_distance's, so the points kept are the same as testing every edge.
+  // A grid point is kept when it is inside the region by the even-odd rule (an odd number of
+  // loop edges cross its row to its right) and clear of every loop edge. Row by row: every point
+  // of a grid row has the same scaled v, so the edges that cross the row and those that come
+  // within the clearance of it are found once per row, not once per point; the points kept are
+  // the same as testing every edge.
   parallel_for(
       0, nv,
       [&](std::size_t j) {

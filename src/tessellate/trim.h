@@ -18,7 +18,4 @@ PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double edge_lengt
 
 inline constexpr double kLoopClearance = 0.5;
 
-// Even-odd point-in-region test against every loop (closed polygons, last point not repeated).
-bool inside_loops(const std::vector<std::vector<Vec2d>>& loops, const Vec2d& q);
-
 }  // namespace hm
