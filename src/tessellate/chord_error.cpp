@@ -49,21 +49,30 @@ double point_triangle_distance(const Vec3d& p, const Vec3d& a, const Vec3d& b, c
 }
 
 double triangle_chord_error(const NurbsSurface& s, const Vec3d& a, const Vec3d& b, const Vec3d& c,
-                            const TriUv& w, const CollapsedSides& cs) {
+                            const TriUv& w, const CollapsedSides& cs, ChordSampling sampling) {
   const Vec2d samples[4] = {cs.edge_middle(w[0], w[1]), cs.edge_middle(w[1], w[2]),
                             cs.edge_middle(w[2], w[0]), cs.centroid(w)};
   double e = 0;
+  if (sampling == ChordSampling::kFromTriangle) {
+    const Vec3d points[4] = {0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) * (1.0 / 3)};
+    for (int k = 0; k < 4; ++k) {
+      const SurfaceProjection p = closest_point(s, points[k], samples[k].x, samples[k].y);
+      e = std::max(e, p.distance);
+    }
+    return e;
+  }
   for (const Vec2d& q : samples)
     e = std::max(e, point_triangle_distance(evaluate(s, q.x, q.y), a, b, c));
   return e;
 }
 
 std::vector<double> measure_chord_error(const NurbsSurface& s, const PatchMesh& m,
-                                        const CollapsedSides& cs) {
+                                        const CollapsedSides& cs, ChordSampling sampling) {
   std::vector<double> err(m.tri_count(), 0.0);
   parallel_for(0, m.tri_count(), [&](std::size_t t) {
     const Tri& v = m.tris[t];
-    err[t] = triangle_chord_error(s, m.xyz[v[0]], m.xyz[v[1]], m.xyz[v[2]], m.tri_uv[t], cs);
+    err[t] =
+        triangle_chord_error(s, m.xyz[v[0]], m.xyz[v[1]], m.xyz[v[2]], m.tri_uv[t], cs, sampling);
   });
   return err;
 }

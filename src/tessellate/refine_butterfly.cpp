@@ -219,7 +219,7 @@ std::vector<std::uint8_t> Refiner::criteria() const {
     bool needed = false;
     for (Index k = table_.first[e]; k < table_.first[e + 1]; ++k)
       needed = needed || wanted(table_.he[k].corner / 3);
-    if (!needed) return;
+    if (!needed || o_.chord_sampling != ChordSampling::kParametric) return;
     const Index c = table_.he[table_.first[e]].corner, t = c / 3, i = c % 3;
     const Vec2d w = o_.collapsed.edge_middle(m_.tri_uv[t][i], m_.tri_uv[t][(i + 1) % 3]);
     edge_point[e] = evaluate(s_, w.x, w.y);
@@ -234,6 +234,11 @@ std::vector<std::uint8_t> Refiner::criteria() const {
     // not that of the surface (its neighbour covers that region), so it only splits for closure.
     if (squared_norm(b - a) <= c2 || squared_norm(c - b) <= c2 || squared_norm(a - c) <= c2) return;
     bool split = o_.max_area > 0 && 0.5 * norm(cross(b - a, c - a)) > o_.max_area;
+    if (o_.chord_sampling == ChordSampling::kFromTriangle) {
+      mark[t] = split || triangle_chord_error(s_, a, b, c, m_.tri_uv[t], o_.collapsed,
+                                              o_.chord_sampling) > o_.chord_tolerance;
+      return;
+    }
     for (int i = 0; i < 3 && !split; ++i) {
       const Vec3d& q = edge_point[table_.edge_of_corner[3 * t + i]];
       split = point_triangle_distance(q, a, b, c) > o_.chord_tolerance;
@@ -505,7 +510,7 @@ std::vector<std::uint8_t> Refiner::failing_greens() const {
     for (int h = 0; h < 2 && !fail[t]; ++h)
       fail[t] =
           triangle_chord_error(s_, m_.xyz[halves[h][0]], m_.xyz[halves[h][1]], m_.xyz[halves[h][2]],
-                               hw[h], o_.collapsed) > o_.chord_tolerance;
+                               hw[h], o_.collapsed, o_.chord_sampling) > o_.chord_tolerance;
   });
   for (std::uint8_t f : fail)
     if (f) return fail;

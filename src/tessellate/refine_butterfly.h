@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "nurbs/nurbs_surface.h"
+#include "tessellate/chord_error.h"
 #include "tessellate/patch_mesh.h"
 
 namespace hm {
@@ -18,6 +19,7 @@ struct RefineOptions {
   double tension = 0;             // Zorin's w
   double collapse_tolerance = 0;  // m: edges this short are collapsed (merged later)
   CollapsedSides collapsed;       // sides of the domain the surface collapses to a point
+  ChordSampling chord_sampling = ChordSampling::kParametric;
 };
 
 struct RefineStats {

@@ -28,6 +28,59 @@ constexpr int kMinClosedCells = 3;
 // A triangle whose area is below this fraction of its longest edge squared has zero area (its
 // smallest angle is below about 1e-7 degrees... far below any real sliver of the refinement).
 constexpr double kZeroAreaFraction = 1e-9;
+// A patch is sheared when its grid has this many times the cells its area needs (cells of edge
+// h: area / h^2) and at least kShearMinCells: its parameter lines run side by side in 3D
+// somewhere. A patch tapering to a point needs about twice; ship_449's keel plate (DE 8385), a
+// four-sided patch with two sides almost in line, needed 48 times.
+constexpr double kShearRatio = 4;
+constexpr double kShearMinCells = 64;
+// ... and, unless its parametrisation folds (below), at least this many edges wide on average
+// (area / longest side). A narrower strip has little inside to thin, and the merge's overlap
+// removal finds a strip lying on its neighbour by the grid's inner vertices (npl_round_bilge's
+// keel strips, 0.4 to 1.5 edges wide, overlap their neighbours at the stern and merge cleanly
+// only on the grid).
+constexpr double kShearMinWidth = 2;
+// A fold: su x sv against its mean over more than this share of the domain, sampled on a grid of
+// kFoldSamples^2. ship_449's keel plate folds over 5e-4 of its Jacobian; the collapsed sides of
+// kcs's stern patches read as 1e-5 and less.
+constexpr double kFoldShare = 1e-4;
+constexpr int kFoldSamples = 33;
+constexpr int kSideSamples = 16;
+
+// True when su x sv points against its mean over a share of the domain (by |su x sv|) above
+// kFoldShare: the patch folds over itself there, and a grid of it would cross itself.
+bool folds(const NurbsSurface& s) {
+  std::vector<Vec3d> jac;
+  Vec3d sum{};
+  for (int j = 0; j < kFoldSamples; ++j) {
+    for (int i = 0; i < kFoldSamples; ++i) {
+      const double u = s.u0 + (s.u1 - s.u0) * i / (kFoldSamples - 1);
+      const double v = s.v0 + (s.v1 - s.v0) * j / (kFoldSamples - 1);
+      const SurfaceDerivs d = evaluate_derivs(s, u, v, 1);
+      jac.push_back(cross(d.su, d.sv));
+      sum += jac.back();
+    }
+  }
+  double against = 0, total = 0;
+  for (const Vec3d& j : jac) {
+    total += norm(j);
+    if (dot(j, sum) < 0) against += norm(j);
+  }
+  return total > 0 && against > kFoldShare * total;
+}
+
+bool is_sheared(const Patch& p, const GridLines& lines, double h) {
+  const double cells = double(lines.u.size() - 1) * double(lines.v.size() - 1);
+  if (cells < kShearMinCells) return false;
+  const double area = patch_extent(p).grid_area;
+  if (!(area > 0) || cells <= kShearRatio * area / (h * h)) return false;
+  const NurbsSurface& s = p.surface;
+  const double longest_side = std::max({iso_line_length(s, true, s.v0, s.u0, s.u1, kSideSamples),
+                                        iso_line_length(s, true, s.v1, s.u0, s.u1, kSideSamples),
+                                        iso_line_length(s, false, s.u0, s.v0, s.v1, kSideSamples),
+                                        iso_line_length(s, false, s.u1, s.v0, s.v1, kSideSamples)});
+  return area >= kShearMinWidth * h * longest_side || folds(s);
+}
 
 struct PatchResult {
   PatchMesh mesh;
@@ -38,25 +91,35 @@ PatchResult mesh_patch(const Patch& p, const TessellateOptions& o) {
   const NurbsSurface& s = p.surface;
   const double merge_tol = kMergeFraction * o.chord_tolerance;
   PatchResult r;
+  bool sheared = false;
   if (p.loops.empty()) {
     const Closure c = detect_closure(s, merge_tol);
     const GridLines lines = grid_lines(s, o.edge_length, o.limits, c.closed_u ? kMinClosedCells : 1,
                                        c.closed_v ? kMinClosedCells : 1);
-    r.mesh = grid_mesh(s, lines);
-    join_seams(r.mesh, lines.u.size(), lines.v.size(), c);
-    join_collapsed(r.mesh, lines.u.size(), lines.v.size(), detect_collapsed(s, merge_tol));
-    compact_vertices(r.mesh);
+    sheared = !c.closed_u && !c.closed_v && is_sheared(p, lines, o.edge_length);
+    if (sheared) {
+      // The domain's sides as one loop, the grid thinned inside: a structured grid would crowd.
+      r.mesh = trimmed_mesh(p, lines, o.edge_length, o.chord_tolerance, true);
+    } else {
+      r.mesh = grid_mesh(s, lines);
+      join_seams(r.mesh, lines.u.size(), lines.v.size(), c);
+      join_collapsed(r.mesh, lines.u.size(), lines.v.size(), detect_collapsed(s, merge_tol));
+      compact_vertices(r.mesh);
+    }
   } else {
     const GridLines lines = grid_lines(s, o.edge_length, o.limits);
-    r.mesh = trimmed_mesh(p, lines, o.edge_length, o.chord_tolerance);
+    sheared = is_sheared(p, lines, o.edge_length);
+    r.mesh = trimmed_mesh(p, lines, o.edge_length, o.chord_tolerance, sheared);
   }
   const CollapsedSides collapsed = detect_collapsed(s, merge_tol);
+  const ChordSampling sampling =
+      sheared ? ChordSampling::kFromTriangle : ChordSampling::kParametric;
   refine_butterfly(s, r.mesh,
                    {o.chord_tolerance, o.max_area, o.max_refine_levels, o.butterfly_tension,
-                    merge_tol, collapsed});
+                    merge_tol, collapsed, sampling});
   merge_coincident(r.mesh, merge_tol);
   remove_zero_area(r.mesh, kZeroAreaFraction);
-  r.chord = measure_chord_error(s, r.mesh, collapsed);
+  r.chord = measure_chord_error(s, r.mesh, collapsed, sampling);
   return r;
 }
 

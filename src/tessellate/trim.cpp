@@ -4,11 +4,15 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <span>
+#include <utility>
 
 #include "core/error.h"
 #include "core/parallel.h"
 #include "tessellate/cdt.h"
 #include "tessellate/degenerate.h"
+#include "tessellate/flip_edges.h"
 
 namespace hm {
 namespace {
@@ -52,19 +56,140 @@ std::uint8_t side_flags(const NurbsSurface& s, const Vec2d& w) {
   return (w.x == s.u0 || w.x == s.u1 || w.y == s.v0 || w.y == s.v1) ? kOnDomainSide : 0;
 }
 
+// The sides of the domain as one counter-clockwise loop through the grid lines' ends, each side
+// walked so that a sample is kept only when skipping it would make a step longer than h in 3D: a
+// sheared patch's grid crowds along some sides. Corners are always kept.
+std::vector<Vec2d> domain_loop(const NurbsSurface& s, const GridLines& lines, double h) {
+  const std::size_t nu = lines.u.size(), nv = lines.v.size();
+  std::vector<std::vector<Vec2d>> sides(4);
+  for (std::size_t i = 0; i < nu; ++i) sides[0].push_back({lines.u[i], s.v0});
+  for (std::size_t j = 0; j < nv; ++j) sides[1].push_back({s.u1, lines.v[j]});
+  for (std::size_t i = nu; i-- > 0;) sides[2].push_back({lines.u[i], s.v1});
+  for (std::size_t j = nv; j-- > 0;) sides[3].push_back({s.u0, lines.v[j]});
+  std::vector<Vec2d> loop;
+  for (const auto& side : sides) {
+    std::vector<Vec3d> at(side.size());
+    for (std::size_t k = 0; k < side.size(); ++k) at[k] = evaluate(s, side[k].x, side[k].y);
+    const std::size_t last = side.size() - 1;
+    loop.push_back(side[0]);
+    for (std::size_t k = 0; k < last;) {
+      std::size_t next = k + 1;
+      while (next < last && norm(at[next + 1] - at[k]) <= h) ++next;
+      if (next < last) loop.push_back(side[next]);
+      k = next;
+    }
+  }
+  return loop;
+}
+
+// Of the candidates (in order), those at least `radius` in 3D from every fixed point and from every
+// candidate kept before them: a greedy, serial thinning on a hash grid of cell `radius`.
+std::vector<std::uint8_t> thin_in_3d(std::span<const Vec3d> fixed, std::span<const Vec3d> cand,
+                                     double radius) {
+  struct Cell {
+    std::int64_t x, y, z;
+    bool operator==(const Cell&) const = default;
+  };
+  const auto cell_of = [&](const Vec3d& p) {
+    return Cell{std::int64_t(std::floor(p.x / radius)), std::int64_t(std::floor(p.y / radius)),
+                std::int64_t(std::floor(p.z / radius))};
+  };
+  const auto hash = [](const Cell& c) {
+    return std::uint64_t(c.x) * 73856093u ^ std::uint64_t(c.y) * 19349663u ^
+           std::uint64_t(c.z) * 83492791u;
+  };
+  std::vector<std::vector<Vec3d>> buckets;
+  const std::size_t nb = std::max<std::size_t>(64, 2 * (fixed.size() + cand.size()));
+  buckets.resize(nb);
+  const auto insert = [&](const Vec3d& p) { buckets[hash(cell_of(p)) % nb].push_back(p); };
+  const double r2 = radius * radius;
+  const auto clear = [&](const Vec3d& p) {
+    const Cell c = cell_of(p);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz)
+          for (const Vec3d& q : buckets[hash({c.x + dx, c.y + dy, c.z + dz}) % nb])
+            if (squared_norm(q - p) < r2) return false;
+    return true;
+  };
+  for (const Vec3d& p : fixed) insert(p);
+  std::vector<std::uint8_t> keep(cand.size(), 0);
+  for (std::size_t i = 0; i < cand.size(); ++i) {
+    if (!clear(cand[i])) continue;
+    keep[i] = 1;
+    insert(cand[i]);
+  }
+  return keep;
+}
+
+// A plane on which a sheared patch is a graph: through its centre, normal to its area-weighted
+// mean normal (su x sv), valid when the sampled normals are within 75 degrees of it, but for
+// samples that carry at most kChartFoldShare of the total |su x sv|: a patch with two sides in
+// line folds over by a hair where its Jacobian vanishes (ship_449's keel plate, DE 8385), and
+// the loop's samples and the thinning keep the mesh out of the fold.
+constexpr double kChartCosTilt = 0.26;  // cos 75 degrees
+constexpr double kChartFoldShare = 0.02;
+constexpr std::size_t kChartSamples = 33;
+
+struct PlaneChart {
+  Vec3d origin, e1, e2;
+  Vec2d operator()(const Vec3d& p) const { return {dot(p - origin, e1), dot(p - origin, e2)}; }
+};
+
+std::optional<PlaneChart> plane_chart(const NurbsSurface& s, const GridLines& lines) {
+  const auto pick = [](const std::vector<double>& l, std::size_t k, std::size_t n) {
+    return l[(k * (l.size() - 1)) / (n - 1)];
+  };
+  const std::size_t nu = std::min(kChartSamples, lines.u.size());
+  const std::size_t nv = std::min(kChartSamples, lines.v.size());
+  if (nu < 2 || nv < 2) return std::nullopt;
+  std::vector<Vec3d> jac, at;
+  for (std::size_t j = 0; j < nv; ++j) {
+    for (std::size_t i = 0; i < nu; ++i) {
+      const SurfaceDerivs d = evaluate_derivs(s, pick(lines.u, i, nu), pick(lines.v, j, nv), 1);
+      jac.push_back(cross(d.su, d.sv));
+      at.push_back(d.p);
+    }
+  }
+  Vec3d sum{}, centre{};
+  double mean = 0;
+  for (std::size_t k = 0; k < jac.size(); ++k) {
+    sum += jac[k];
+    centre += at[k];
+    mean += norm(jac[k]);
+  }
+  mean /= double(jac.size());
+  const double len = norm(sum);
+  if (!(len > 0) || !(mean > 0)) return std::nullopt;
+  const Vec3d n = sum / len;
+  double off = 0;  // the samples' share of |su x sv| that tilts past the bound
+  for (const Vec3d& j : jac) {
+    const double m = norm(j);
+    if (dot(j, n) < kChartCosTilt * m) off += m;
+  }
+  if (off > kChartFoldShare * mean * double(jac.size())) return std::nullopt;
+  // Any unit vector normal to n, then the third by the right-hand rule (counter-clockwise in the
+  // chart is counter-clockwise seen from the side su x sv points to).
+  const Vec3d t = std::abs(n.x) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
+  const Vec3d e1 = cross(t, n) / norm(cross(t, n));
+  return PlaneChart{centre / double(jac.size()), e1, cross(n, e1)};
+}
+
 }  // namespace
 
-PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double tol) {
+PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double tol, bool sheared) {
   const NurbsSurface& s = p.surface;
   const double speed = std::max({lines.speed_u, lines.speed_v, 1e-300});
   const double tol_uv = 0.5 * tol / speed;
   std::vector<std::vector<Vec2d>> loops = clean_loops(sample_loops_uv(p, tol_uv), s);
-  if (loops.empty())
+  if (loops.empty() && !p.loops.empty())
     throw GeometryError("tessellate: patch " + p.name + " has no usable trim loop");
   // Holes only: the outer loop was the natural boundary of the domain (dropped on import).
   bool has_outer = false;
   for (const TrimLoop& l : p.loops) has_outer = has_outer || l.outer;
-  if (!has_outer)
+  if (p.loops.empty())
+    loops.push_back(domain_loop(s, lines, h));
+  else if (!has_outer)
     loops.insert(loops.begin(), {{s.u0, s.v0}, {s.u1, s.v0}, {s.u1, s.v1}, {s.u0, s.v1}});
   for (auto& l : loops) l = split_long(s, l, h);
   // Scaled (u, v): about metres, so that Delaunay angles and clearances mean something in 3D.
@@ -133,21 +258,51 @@ PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double 
         }
       },
       1, 2);
-  for (std::size_t k = 0; k < nu * nv; ++k) {
-    if (!keep[k]) continue;
-    const Vec2d w{lines.u[k % nu], lines.v[k / nu]};
-    uv.push_back(w);
-    xy.push_back(scaled(w));
-    flags.push_back(side_flags(s, w));
+  std::vector<Vec2d> inner;
+  for (std::size_t k = 0; k < nu * nv; ++k)
+    if (keep[k]) inner.push_back({lines.u[k % nu], lines.v[k / nu]});
+  const std::size_t n_loop = uv.size();
+  std::vector<Vec3d> xyz(n_loop + inner.size());
+  for (std::size_t k = 0; k < inner.size(); ++k) uv.push_back(inner[k]);
+  parallel_for(0, uv.size(), [&](std::size_t v) { xyz[v] = evaluate(s, uv[v].x, uv[v].y); });
+  // Sheared: the grid's lines crowd in 3D where the parameter lines run side by side; keep the
+  // grid points about an edge apart in 3D.
+  std::vector<std::uint8_t> inner_keep(inner.size(), 1);
+  if (sheared) {
+    inner_keep = thin_in_3d(std::span(xyz).first(n_loop), std::span(xyz).subspan(n_loop),
+                            kShearedSpacing * h);
   }
-  const std::vector<Tri> tris = triangulate_region(xy, segments);
+  std::size_t out = n_loop;
+  for (std::size_t k = 0; k < inner.size(); ++k) {
+    if (!inner_keep[k]) continue;
+    uv[out] = inner[k];
+    xyz[out++] = xyz[n_loop + k];
+    xy.push_back(scaled(inner[k]));
+    flags.push_back(side_flags(s, inner[k]));
+  }
+  uv.resize(out);
+  xyz.resize(out);
+  // A Delaunay triangulation in a sheared parameter plane is far from one in 3D: such a patch is
+  // triangulated on a plane it is a graph over where it has one, and its edges are flipped for 3D
+  // angles either way. A chart whose loops cross (a patch curling past 75 degrees from its mean
+  // normal was not caught by the samples) falls back to the parameter plane.
+  std::vector<Tri> tris;
+  std::vector<Vec2d> chart_xy;
+  if (const std::optional<PlaneChart> chart = sheared ? plane_chart(s, lines) : std::nullopt) {
+    for (const Vec3d& q : xyz) chart_xy.push_back((*chart)(q));
+    try {
+      tris = triangulate_region(chart_xy, segments);
+    } catch (const GeometryError&) {
+      chart_xy.clear();
+    }
+  }
+  if (chart_xy.empty()) tris = triangulate_region(xy, segments);
   PatchMesh m;
   m.uv = std::move(uv);
   m.flags = std::move(flags);
-  m.xyz.resize(m.uv.size());
-  parallel_for(0, m.uv.size(),
-               [&](std::size_t v) { m.xyz[v] = evaluate(s, m.uv[v].x, m.uv[v].y); });
+  m.xyz = std::move(xyz);
   for (const Tri& t : tris) m.add_tri(t, {m.uv[t[0]], m.uv[t[1]], m.uv[t[2]]});
+  if (sheared) flip_edges_3d(m, chart_xy.empty() ? std::span<const Vec2d>(xy) : chart_xy);
   compact_vertices(m);
   return m;
 }

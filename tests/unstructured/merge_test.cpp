@@ -226,5 +226,23 @@ INSTANTIATE_TEST_SUITE_P(Hulls, MergeSharedHull,
                          ::testing::Values("wigley.iges", "series60.iges", "dtmb5415.iges",
                                            "kcs.iges"));
 
+// ship_449's keel plate (DE 8385) is a four-sided patch with two sides in line, folded over a
+// hair at their corner. Its grid crowded (28,000 of 183,000 triangles) and crossed itself, and
+// the merge left 7 edges with three faces at 128,000 triangles and 262 at 400,000.
+TEST(MergeShip449, FoldedKeelPlateMergesAtFineSizes) {
+  HM_REQUIRE_SHARED_HULL(path, "ship_449_patches.iges");
+  const ImportResult hull = read_iges_file(path.string());
+  for (const std::size_t triangles : {128000u, 400000u}) {
+    SCOPED_TRACE(triangles);
+    const Merged m = merge_of(hull.patches, edge_length_for_triangles(hull.patches, triangles));
+    EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+    EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+    EXPECT_GT(m.merged.report.enclosed_volume, 0.0);
+    std::size_t plate = 0;
+    for (PatchId p : m.tess.mesh.face_patch) plate += hull.patches[p].de == 8385;
+    EXPECT_LT(double(plate), 0.02 * double(m.tess.mesh.face_count()));  // 27 m^2 of 5,896
+  }
+}
+
 }  // namespace
 }  // namespace hm
