@@ -1,6 +1,7 @@
 #include "query/query_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <tuple>
 
@@ -194,12 +195,19 @@ HullQuery::Impl::Impl(std::span<const Patch> in_patches, const SurfaceMesh& mesh
 
   // How far the triangles stray from the surface, sampled at their centroids: the closest-point
   // search widens its radius by this much so that it does not miss a patch whose triangles lie
-  // slightly farther than the surface does.
+  // slightly farther than the surface does. Only the offset along the triangle's normal counts:
+  // on a sheared patch (parameter lines side by side) the surface point at the centroid's
+  // (u, v) lies well away from the centroid in the tangent plane, and counting that widened
+  // every search to metres.
   std::vector<double> deviation(total);
   parallel_for(0, total, [&](std::size_t t) {
     const Vec2d uv = uv_at(static_cast<Index>(t), 1.0 / 3, 1.0 / 3);
-    const Vec3d c = (local[tri[t][0]] + local[tri[t][1]] + local[tri[t][2]]) / 3.0;
-    deviation[t] = norm(evaluate(patches[tri_patch[t]].surface, uv.x, uv.y) - to_model(c));
+    const Vec3d &a = local[tri[t][0]], &b = local[tri[t][1]], &c = local[tri[t][2]];
+    const Vec3d offset =
+        evaluate(patches[tri_patch[t]].surface, uv.x, uv.y) - to_model((a + b + c) / 3.0);
+    const Vec3d n = cross(b - a, c - a);
+    const double len = norm(n);
+    deviation[t] = len > 0 ? std::abs(dot(offset, n)) / len : norm(offset);
   });
   for (double d : deviation) max_deviation = std::max(max_deviation, d);
 
