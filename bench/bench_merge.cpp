@@ -19,6 +19,7 @@
 #include "iges/read_iges.h"
 #include "kernels/morton.h"
 #include "kernels/weld.h"
+#include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/merge.h"
@@ -72,6 +73,27 @@ void BM_Merge(benchmark::State& state) {
 BENCHMARK(BM_Merge)
     ->ArgNames({"triangles", "threads"})
     ->ArgsProduct({{40'000, 400'000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The edge adjacency of the merged surface (every merge step and every mesher builds it).
+// Args: target triangles, threads.
+void BM_EdgeAdjacency(benchmark::State& state) {
+  static std::map<std::size_t, MergedSurface> merged;
+  const std::size_t triangles = static_cast<std::size_t>(state.range(0));
+  if (!merged.count(triangles)) {
+    merged.emplace(triangles, merge_patches(source().patches, tessellated(triangles).mesh, {},
+                                            silent_progress()));
+  }
+  const SurfaceMesh& m = merged.at(triangles).mesh;
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(state.range(1)));
+  for (auto _ : state) benchmark::DoNotOptimize(build_edge_adjacency(m.faces, m.vertex_count()));
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * m.face_count()));
+}
+BENCHMARK(BM_EdgeAdjacency)
+    ->ArgNames({"triangles", "threads"})
+    ->ArgsProduct({{400'000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -40,9 +40,8 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
 
 }  // namespace
 
-std::size_t fill_small_holes(Work& w) {
+std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj) {
   SurfaceMesh& m = w.mesh;
-  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
   std::size_t filled = 0;
   for (const BoundaryLoop& loop : adj.boundary_loops) {
     if (!loop.closed) continue;

@@ -60,14 +60,18 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   MergeReport& r = out.report;
   r.input_triangles = triangulation.face_count();
   progress.stage("merge");
+  // The border of the patch triangulations, collected again only when the overlaps changed it.
+  merge::Border border = merge::collect_border(w.mesh);
   if (options.remove_overlaps) {
-    const merge::OverlapStats o = merge::remove_overlaps(patches, w, options, length, progress);
+    const merge::OverlapStats o =
+        merge::remove_overlaps(patches, w, border, options, length, progress);
     r.overlap_triangles_removed = o.triangles;
     r.overlap_area_removed = o.area;
+    if (o.changed) border = merge::collect_border(w.mesh);
   }
   if (progress.cancelled()) throw UsageError("merge cancelled");
   progress.update(0.4);
-  const merge::SnapStats s = merge::snap_borders(w, options, length);
+  const merge::SnapStats s = merge::snap_borders(w, border, options, length);
   r.vertices_welded = s.welded;
   r.tjunctions_split = s.split;
   r.gaps_closed = s.gaps_closed;
@@ -77,19 +81,21 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   r.patches_flipped = merge::orient_faces(patches, w);
   // After orienting: the loops must follow one winding to be closed against it.
   // Holes that touch at a vertex chain as one loop until one of them is closed: repeat a little.
+  EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   for (int pass = 0; pass < 3; ++pass) {
-    const std::size_t filled = merge::fill_small_holes(w);
+    const std::size_t filled = merge::fill_small_holes(w, adj);
     r.holes_filled += filled;
     if (filled == 0) break;
+    adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   }
-  merge::reorder_morton(w);
-  const EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  // The report before the Morton order: none of it depends on the numbering, and the adjacency
+  // of the last pass is current.
   r.open_gaps = merge::find_open_gaps(w, adj, options);
-
   r.boundary_loops = adj.boundary_loops.size();
   r.nonmanifold_edges = adj.nonmanifold_edges.size();
   r.inconsistent_edges = adj.inconsistent_edges.size();
   r.enclosed_volume = merge::enclosed_volume(w.mesh, adj);
+  merge::reorder_morton(w);
   progress.update(1.0);
 
   out.mesh = std::move(w.mesh);

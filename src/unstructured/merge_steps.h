@@ -9,6 +9,7 @@
 #include "mesh/surface_mesh.h"
 #include "nurbs/patch.h"
 #include "unstructured/merge.h"
+#include "unstructured/merge_border.h"
 
 namespace hm::merge {
 
@@ -27,14 +28,16 @@ double vertex_tolerance(const MergeOptions& options, double border_edge_length);
 
 struct OverlapStats {
   std::size_t triangles = 0;
-  double area = 0;  // m^2
+  double area = 0;       // m^2
+  bool changed = false;  // faces removed or corners moved: the border must be collected again
 };
 // Finds border vertices of one patch that lie inside another patch's surface (closest point
 // within a few chord errors, normals compatible, away from that patch's border), grows the
 // covered region over the patch, removes it and moves the straddling corners onto the covering
-// patch's border. Of two patches covering each other, the higher-numbered one is cut.
-OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const MergeOptions& options,
-                             double length, Progress& progress);
+// patch's border. Of two patches covering each other, the higher-numbered one is cut. border is
+// collect_border of the mesh as it comes in.
+OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& border,
+                             const MergeOptions& options, double length, Progress& progress);
 
 struct SnapStats {
   std::size_t welded = 0;
@@ -43,14 +46,16 @@ struct SnapStats {
   double widest = 0;  // m
 };
 // Welds border vertices of different patches and splits border edges at the other patches'
-// vertices (T-junctions), so that borders within tolerance meet vertex to vertex.
-SnapStats snap_borders(Work& w, const MergeOptions& options, double length);
+// vertices (T-junctions), so that borders within tolerance meet vertex to vertex. border is
+// collect_border of the mesh as it comes in.
+SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& options, double length);
 
 // Closes boundary loops of 3 or 4 vertices that run along two or more patches (the holes
 // pairwise zipping leaves where several patch corners meet), and pinholes of up to 16 vertices
-// smaller than the faces around them. Returns the holes filled. The new
-// faces take the provenance of the loop's lowest-numbered face.
-std::size_t fill_small_holes(Work& w);
+// smaller than the faces around them. adj is the mesh's current adjacency. Returns the holes
+// filled (when none, adj is still current). The new faces take the provenance of the loop's
+// lowest-numbered face.
+std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj);
 
 // Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
 // number of faces dropped.

@@ -160,12 +160,11 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
 
 }  // namespace
 
-OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const MergeOptions& options,
-                             double length, Progress& progress) {
+OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& b,
+                             const MergeOptions& options, double length, Progress& progress) {
   OverlapStats stats;
   SurfaceMesh& m = w.mesh;
   const double distance = options.overlap_distance > 0 ? options.overlap_distance : 1e-4 * length;
-  const Border b = collect_border(m);
   // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
   const std::vector<Index> candidates = seed_candidates(m, b, options, distance);
   if (candidates.empty()) return stats;
@@ -186,6 +185,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Merg
     return stats;
   }
   const HullQuery query(patches, faces_near(m, candidates, patches.size(), 20 * distance, false));
+  stats.changed = true;  // from here on faces may go and corners move
 
   // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
   // ring by ring: each ring is checked in parallel and committed in order).

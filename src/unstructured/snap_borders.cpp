@@ -83,9 +83,8 @@ double vertex_tolerance(const MergeOptions& options, double border_edge_length) 
   return options.gap_tolerance > 0 ? options.gap_tolerance : 0.5 * border_edge_length;
 }
 
-SnapStats snap_borders(Work& w, const MergeOptions& options, double length) {
+SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, double length) {
   SurfaceMesh& m = w.mesh;
-  const Border b = collect_border(m);
   const std::size_t nb = b.vertices.size();
   std::vector<double> tol(nb);
   for (std::size_t i = 0; i < nb; ++i) tol[i] = vertex_tolerance(options, b.edge_length[i]);
