@@ -1,9 +1,11 @@
 // Snap: border vertices of one patch meet the border of another vertex to vertex.
 //
-// collect the border -> for each border vertex, in parallel, find the nearest border vertex and
-// edge of other patches -> select welds (nearest first, never two vertices of one patch in a
-// cluster) and splits (a vertex well inside another patch's edge) -> apply: average welded
-// positions, move split vertices halfway onto the edge, replace each split triangle by a fan.
+// collect the border -> for each border vertex, in parallel, measure its own patch's width there
+// (its tolerance is at most half of it) and find the nearest border vertex and edge of other
+// patches -> select welds (nearest first, never two vertices of one patch in a cluster, never
+// across a third patch) and splits (a vertex well inside another patch's edge) -> apply: average
+// welded positions, move split vertices halfway onto the edge, replace each split triangle by a
+// fan.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -34,6 +36,14 @@ struct Split {
 // would make an edge with three faces.
 constexpr double kFoldCos = 0.5;
 
+// A border vertex moves at most this share of its own patch's width across a gap.
+constexpr double kWidthShare = 0.5;
+
+// A third patch lies between two close border vertices when each is within this share of their
+// distance from its border and heads into it within 60 degrees.
+constexpr double kBetweenShare = 0.5;
+constexpr double kIntoCos = 0.5;
+
 // Per border vertex: the mean inward direction of its border edges (unit, or zero).
 std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
                                  std::span<const Index> local) {
@@ -50,12 +60,35 @@ std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
   return in;
 }
 
+// Per border vertex: how wide its own patch is there, up to `reach`: the distance to the nearest
+// border edge of the same patch that faces it from across the patch (inward directions more than
+// 120 degrees apart, not an edge of the vertex). A strip narrower than the gap tolerance (a
+// transom cut into thin rows, a keel bar) would otherwise have both its sides snap onto the same
+// neighbour, or one side onto the patch beyond it.
+std::vector<double> own_width(const SurfaceMesh& m, const Border& b, const SegmentGrid& grid,
+                              std::span<const Vec3d> edge_in, std::span<const Vec3d> inward,
+                              std::span<const double> reach) {
+  std::vector<double> out(b.vertices.size());
+  parallel_for(0, b.vertices.size(), [&](std::size_t i) {
+    const Index v = b.vertices[i];
+    const Vec3d& p = m.positions[v];
+    const PatchId pv = m.vertex_patch[v];
+    double best = reach[i];
+    grid.for_each_near(p, reach[i], [&](Index e) {
+      const BorderEdge& be = b.edges[e];
+      if (be.patch != pv || be.v0 == v || be.v1 == v) return;
+      if (dot(edge_in[e], inward[i]) > -kFoldCos) return;
+      best = std::min(best, closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]).distance);
+    });
+    out[i] = best;
+  });
+  return out;
+}
+
 // Per border vertex: the nearest border edge of another patch within its tolerance.
-std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::span<const double> tol,
+std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, const SegmentGrid& grid,
+                                 std::span<const Vec3d> edge_in, std::span<const double> tol,
                                  std::span<const Vec3d> inward) {
-  const SegmentGrid grid(m.positions, b.edges);
-  std::vector<Vec3d> edge_in(b.edges.size());
-  parallel_for(0, b.edges.size(), [&](std::size_t e) { edge_in[e] = edge_inward(m, b.edges[e]); });
   std::vector<Split> out(b.vertices.size());
   parallel_for(0, b.vertices.size(), [&](std::size_t i) {
     const Index v = b.vertices[i];
@@ -91,9 +124,17 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
   std::vector<Index> local(m.vertex_count(), kInvalid);  // mesh vertex -> border index
   for (std::size_t i = 0; i < nb; ++i) local[b.vertices[i]] = Index(i);
 
-  // Collect: nearest other-patch edge of every border vertex.
+  // Collect: nearest other-patch edge of every border vertex, within a tolerance that is at most
+  // half its own patch's width there.
   const std::vector<Vec3d> inward = vertex_inward(m, b, local);
-  const std::vector<Split> near = nearest_edges(m, b, tol, inward);
+  const SegmentGrid grid(m.positions, b.edges);
+  std::vector<Vec3d> edge_in(b.edges.size());
+  parallel_for(0, b.edges.size(), [&](std::size_t e) { edge_in[e] = edge_inward(m, b.edges[e]); });
+  std::vector<double> across(nb);
+  for (std::size_t i = 0; i < nb; ++i) across[i] = tol[i] / kWidthShare;
+  const std::vector<double> width = own_width(m, b, grid, edge_in, inward, across);
+  for (std::size_t i = 0; i < nb; ++i) tol[i] = std::min(tol[i], kWidthShare * width[i]);
+  const std::vector<Split> near = nearest_edges(m, b, grid, edge_in, tol, inward);
 
   // Score welds: a vertex near an edge end joins that end. Close pairs from the weld kernel
   // catch vertices that meet at a patch corner where no edge is nearest.
@@ -107,6 +148,19 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
   }
   std::vector<ClosePair> pairs;
   const double coincident_tol = 1e-9 * length;
+  // True when border vertices i and j both lie near the border of one third patch (within
+  // kBetweenShare of their distance) and the way from each to the other goes into that patch
+  // (within 60 degrees of its inward direction): the patch lies between them.
+  const auto across_third_patch = [&](Index i, Index j) {
+    const Split &si = near[i], &sj = near[j];
+    if (si.edge == kInvalid || sj.edge == kInvalid) return false;
+    const PatchId c = b.edges[si.edge].patch;
+    if (b.edges[sj.edge].patch != c || c == group[i] || c == group[j]) return false;
+    const Vec3d ij = points[j] - points[i];
+    const double d = norm(ij);
+    if (!(si.distance <= kBetweenShare * d && sj.distance <= kBetweenShare * d)) return false;
+    return dot(ij, edge_in[si.edge]) > kIntoCos * d && dot(-ij, edge_in[sj.edge]) > kIntoCos * d;
+  };
   if (nb > 1 && reach > 0) {
     for (const ClosePair& p : find_close_pairs(points, group, reach)) {
       const double limit = std::min({tol[p.a], tol[p.b], kEndFraction * 2 * b.edge_length[p.a],
@@ -115,6 +169,9 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       // at a fine stem or keel well inside the fold test's 60 degrees, and a fold does not put
       // two patches' vertices at the same point.
       const bool coincident = p.distance <= coincident_tol;
+      // Two patches on either side of a strip narrower than the tolerance: each vertex belongs
+      // on the strip's border, not on the other's.
+      if (!coincident && across_third_patch(p.a, p.b)) continue;
       if (p.distance <= limit && (coincident || dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
         pairs.push_back(p);
       }

@@ -85,6 +85,47 @@ TEST(Merge, ManySmallPatchesMeetAtTheCentrePlaneWithoutAThirdFace) {
   expect_clean_half_hull(m, "round-bilge, 300 patches");
 }
 
+// A flat bilinear patch in the plane x = 0 with corners (y, z): a0, a1 along the lower side and
+// b0, b1 along the upper one.
+Patch plate(Vec2d a0, Vec2d a1, Vec2d b0, Vec2d b1) {
+  Patch p;
+  NurbsSurface& s = p.surface;
+  s.degree_u = s.degree_v = 1;
+  s.count_u = s.count_v = 2;
+  s.knots_u = s.knots_v = {0, 0, 1, 1};
+  s.points = {{0, a0.x, a0.y}, {0, a1.x, a1.y}, {0, b0.x, b0.y}, {0, b1.x, b1.y}};
+  s.weights = {1, 1, 1, 1};
+  p.wrapping = Wrapping::kGenerated;
+  return p;
+}
+
+// A transom cut into rows, the lowest ones strips narrower than the gap tolerance (half the 1 m
+// border edge). Snapping moved a strip's sides across it, onto the same neighbour or the patch
+// beyond, and folded the strips into edges with three and four faces.
+TEST(Merge, StripsNarrowerThanTheToleranceKeepTheirWidth) {
+  const std::vector<Patch> patches = {
+      plate({0, 0.3}, {4, 0.35}, {0, 3}, {4, 3}),         // the transom above
+      plate({0, 0.21}, {4, 0.25}, {0, 0.3}, {4, 0.35}),   // a strip 9 to 10 cm tall
+      plate({0, 0.17}, {4, 0.20}, {0, 0.21}, {4, 0.25}),  // and one of 4 to 5 cm
+      plate({0, 0}, {4, 0}, {0, 0.17}, {4, 0.20})};
+  const Merged m = merge_of(patches, 1.0);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  EXPECT_NEAR(total_area(m.merged.mesh), 4 * 3, 1e-9 * 12);  // no face folds over another
+}
+
+// The generated chine hull of 1,000 patches: its transom rows and the strips at the chine are
+// narrower than the gap tolerance. Vertices of the patches on either side of such a strip are
+// close to each other, with the strip between them. A close pair like that is welded only
+// when no third patch lies between the two vertices, or edges get three and four faces (9
+// here before that rule, with the own-width limit alone).
+TEST(Merge, NoWeldAcrossAThirdPatch) {
+  const std::vector<Patch> patches = generated(HullKind::kChine, 1000).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 128000));
+  expect_clean_half_hull(m, "chine, 1000 patches");
+}
+
 // A full Wigley hull as two halves: they meet at the stem, stern and keel at well under 60
 // degrees (the fold test alone kept that seam open), and at each end-keel corner both halves
 // have a triangle lying in the centre plane, which the welds lay back to back. The result is
