@@ -60,51 +60,47 @@ std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
   return in;
 }
 
-// Per border vertex: how wide its own patch is there, up to `reach`: the distance to the nearest
-// border edge of the same patch that faces it from across the patch (inward directions more than
-// 120 degrees apart, not an edge of the vertex). A strip narrower than the gap tolerance (a
-// transom cut into thin rows, a keel bar) would otherwise have both its sides snap onto the same
-// neighbour, or one side onto the patch beyond it.
-std::vector<double> own_width(const SurfaceMesh& m, const Border& b, const SegmentGrid& grid,
-                              std::span<const Vec3d> edge_in, std::span<const Vec3d> inward,
-                              std::span<const double> reach) {
-  std::vector<double> out(b.vertices.size());
-  parallel_for(0, b.vertices.size(), [&](std::size_t i) {
-    const Index v = b.vertices[i];
-    const Vec3d& p = m.positions[v];
-    const PatchId pv = m.vertex_patch[v];
-    double best = reach[i];
-    grid.for_each_near(p, reach[i], [&](Index e) {
-      const BorderEdge& be = b.edges[e];
-      if (be.patch != pv || be.v0 == v || be.v1 == v) return;
-      if (dot(edge_in[e], inward[i]) > -kFoldCos) return;
-      best = std::min(best, closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]).distance);
-    });
-    out[i] = best;
-  });
-  return out;
-}
-
-// Per border vertex: the nearest border edge of another patch within its tolerance.
-std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, const SegmentGrid& grid,
-                                 std::span<const Vec3d> edge_in, std::span<const double> tol,
+// Per border vertex, in one pass over the border edges near it:
+//   - how wide its own patch is there: the distance to the nearest border edge of the same patch
+//     that faces it from across the patch (inward directions more than 120 degrees apart, not an
+//     edge of the vertex). Its tolerance is cut to kWidthShare of that: a strip narrower than the
+//     gap tolerance (a transom cut into thin rows, a keel bar) would otherwise have both its
+//     sides snap onto the same neighbour, or one side onto the patch beyond it;
+//   - the nearest border edge of another patch, kept when it is within that tolerance.
+// tol is the tolerance before the cut, and is cut in place.
+std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::span<double> tol,
                                  std::span<const Vec3d> inward) {
+  const SegmentGrid grid(m.positions, b.edges);
+  std::vector<Vec3d> edge_in(b.edges.size());
+  parallel_for(0, b.edges.size(), [&](std::size_t e) { edge_in[e] = edge_inward(m, b.edges[e]); });
   std::vector<Split> out(b.vertices.size());
   parallel_for(0, b.vertices.size(), [&](std::size_t i) {
     const Index v = b.vertices[i];
     const Vec3d& p = m.positions[v];
     const PatchId pv = m.vertex_patch[v];
+    // The width matters up to tol / kWidthShare; the nearest other edge, once found within that,
+    // is the nearest within any smaller tolerance too.
+    const double reach = tol[i] / kWidthShare;
+    double width = reach;
     Split best;
     best.distance = std::numeric_limits<double>::infinity();
-    grid.for_each_near(p, tol[i], [&](Index e) {
+    grid.for_each_near(p, reach, [&](Index e) {
       const BorderEdge& be = b.edges[e];
-      if (be.patch == pv || be.v0 == v || be.v1 == v) return;
+      if (be.v0 == v || be.v1 == v) return;
+      if (be.patch == pv) {
+        if (dot(edge_in[e], inward[i]) <= -kFoldCos) {
+          width = std::min(width,
+                           closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]).distance);
+        }
+        return;
+      }
       if (dot(edge_in[e], inward[i]) > kFoldCos) return;
       const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
       if (sp.distance < best.distance || (sp.distance == best.distance && e < best.edge)) {
         best = {e, sp.t, sp.distance};
       }
     });
+    tol[i] = std::min(tol[i], kWidthShare * width);
     if (best.edge != kInvalid && best.distance <= tol[i]) out[i] = best;
   });
   return out;
@@ -127,14 +123,7 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
   // Collect: nearest other-patch edge of every border vertex, within a tolerance that is at most
   // half its own patch's width there.
   const std::vector<Vec3d> inward = vertex_inward(m, b, local);
-  const SegmentGrid grid(m.positions, b.edges);
-  std::vector<Vec3d> edge_in(b.edges.size());
-  parallel_for(0, b.edges.size(), [&](std::size_t e) { edge_in[e] = edge_inward(m, b.edges[e]); });
-  std::vector<double> across(nb);
-  for (std::size_t i = 0; i < nb; ++i) across[i] = tol[i] / kWidthShare;
-  const std::vector<double> width = own_width(m, b, grid, edge_in, inward, across);
-  for (std::size_t i = 0; i < nb; ++i) tol[i] = std::min(tol[i], kWidthShare * width[i]);
-  const std::vector<Split> near = nearest_edges(m, b, grid, edge_in, tol, inward);
+  const std::vector<Split> near = nearest_edges(m, b, tol, inward);
 
   // Score welds: a vertex near an edge end joins that end. Close pairs from the weld kernel
   // catch vertices that meet at a patch corner where no edge is nearest.
@@ -159,7 +148,8 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     const Vec3d ij = points[j] - points[i];
     const double d = norm(ij);
     if (!(si.distance <= kBetweenShare * d && sj.distance <= kBetweenShare * d)) return false;
-    return dot(ij, edge_in[si.edge]) > kIntoCos * d && dot(-ij, edge_in[sj.edge]) > kIntoCos * d;
+    return dot(ij, edge_inward(m, b.edges[si.edge])) > kIntoCos * d &&
+           dot(-ij, edge_inward(m, b.edges[sj.edge])) > kIntoCos * d;
   };
   if (nb > 1 && reach > 0) {
     for (const ClosePair& p : find_close_pairs(points, group, reach)) {
