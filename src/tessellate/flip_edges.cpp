@@ -1,13 +1,11 @@
 // flip_edges_3d: collect the neighbours across every edge -> for each interior edge, score the
-// flip (smallest 3D angle before and after) -> apply it when it is better and valid in (u, v) and
-// in 3D -> repeat until a pass flips nothing.
+// flip (smallest 3D angle before and after) -> apply it when it is better and valid in the chart
+// and in 3D -> repeat until a pass flips nothing.
 #include "tessellate/flip_edges.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
-#include <utility>
 #include <vector>
 
 namespace hm {
@@ -37,22 +35,14 @@ bool ccw_2d(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
 // nbr[t][i]: the triangle across edge (tris[t][i], tris[t][i + 1]), or kInvalid on the boundary
 // (or at an edge with more than two triangles, which never flips).
 std::vector<std::array<Index, 3>> neighbours(const PatchMesh& m) {
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> half;  // (undirected key, 3 t + i)
-  half.reserve(3 * m.tri_count());
-  for (std::size_t t = 0; t < m.tri_count(); ++t)
-    for (int i = 0; i < 3; ++i)
-      half.push_back({edge_key(m.tris[t][i], m.tris[t][(i + 1) % 3]), std::uint32_t(3 * t + i)});
-  std::sort(half.begin(), half.end());
+  EdgeTable table;
+  table.build(m.tris);
   std::vector<std::array<Index, 3>> nbr(m.tri_count(), {kInvalid, kInvalid, kInvalid});
-  for (std::size_t k = 0; k < half.size();) {
-    std::size_t e = k;
-    while (e < half.size() && half[e].first == half[k].first) ++e;
-    if (e - k == 2) {
-      const std::uint32_t x = half[k].second, y = half[k + 1].second;
-      nbr[x / 3][x % 3] = Index(y / 3);
-      nbr[y / 3][y % 3] = Index(x / 3);
-    }
-    k = e;
+  for (std::size_t e = 0; e < table.count(); ++e) {
+    if (table.size(Index(e)) != 2) continue;
+    const Index x = table.he[table.first[e]].corner, y = table.he[table.first[e] + 1].corner;
+    nbr[x / 3][x % 3] = y / 3;
+    nbr[y / 3][y % 3] = x / 3;
   }
   return nbr;
 }

@@ -27,44 +27,6 @@ constexpr int kGreenRounds = 16;
 Index key_lo(std::uint64_t k) { return Index(k >> 32); }
 Index key_hi(std::uint64_t k) { return Index(k & 0xffffffffu); }
 
-struct HalfEdge {
-  std::uint64_t key;
-  Index corner;  // 3t + i: edge (v[i], v[i + 1]) of triangle t
-  bool operator<(const HalfEdge& o) const {
-    return key < o.key || (key == o.key && corner < o.corner);
-  }
-};
-
-// Undirected edges of the current triangles, found by sorting half-edges.
-struct EdgeTable {
-  std::vector<HalfEdge> he;
-  std::vector<Index> first;           // unique edge e: he[first[e], first[e + 1])
-  std::vector<Index> edge_of_corner;  // 3t + i -> unique edge
-
-  void build(const std::vector<Tri>& tris) {
-    he.resize(3 * tris.size());
-    for (std::size_t t = 0; t < tris.size(); ++t)
-      for (int i = 0; i < 3; ++i)
-        he[3 * t + i] = {edge_key(tris[t][i], tris[t][(i + 1) % 3]), Index(3 * t + i)};
-    std::sort(he.begin(), he.end());
-    first.clear();
-    edge_of_corner.resize(he.size());
-    for (std::size_t k = 0; k < he.size(); ++k) {
-      if (k == 0 || he[k].key != he[k - 1].key) first.push_back(Index(k));
-      edge_of_corner[he[k].corner] = Index(first.size() - 1);
-    }
-    first.push_back(Index(he.size()));
-  }
-  std::size_t count() const { return first.size() - 1; }
-  Index size(Index e) const { return first[e + 1] - first[e]; }
-  // Unique edge with this key, or kInvalid.
-  Index find(std::uint64_t key) const {
-    auto it = std::lower_bound(he.begin(), he.end(), HalfEdge{key, 0});
-    if (it == he.end() || it->key != key) return kInvalid;
-    return edge_of_corner[it->corner];
-  }
-};
-
 // Signed double area of (a, b, c) in (u, v).
 double orient(const Vec2d& a, const Vec2d& b, const Vec2d& c) { return cross(b - a, c - a); }
 

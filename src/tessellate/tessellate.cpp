@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "core/bbox.h"
@@ -14,6 +15,7 @@
 #include "tessellate/degenerate.h"
 #include "tessellate/initial_grid.h"
 #include "tessellate/refine_butterfly.h"
+#include "tessellate/sample_normals.h"
 #include "tessellate/trim.h"
 
 namespace hm {
@@ -40,46 +42,30 @@ constexpr double kShearMinCells = 64;
 // keel strips, 0.4 to 1.5 edges wide, overlap their neighbours at the stern and merge cleanly
 // only on the grid).
 constexpr double kShearMinWidth = 2;
-// A fold: su x sv against its mean over more than this share of the domain, sampled on a grid of
-// kFoldSamples^2. ship_449's keel plate folds over 5e-4 of its Jacobian; the collapsed sides of
-// kcs's stern patches read as 1e-5 and less.
+// A fold: su x sv against its mean over more than this share of |su x sv| (sample_normals).
+// ship_449's keel plate folds over 5e-4 of its Jacobian; the collapsed sides of kcs's stern
+// patches read as 1e-5 and less.
 constexpr double kFoldShare = 1e-4;
-constexpr int kFoldSamples = 33;
-constexpr int kSideSamples = 16;
+constexpr int kSideSamples = 16;  // per side, for its length
 
-// True when su x sv points against its mean over a share of the domain (by |su x sv|) above
-// kFoldShare: the patch folds over itself there, and a grid of it would cross itself.
-bool folds(const NurbsSurface& s) {
-  std::vector<Vec3d> jac;
-  Vec3d sum{};
-  for (int j = 0; j < kFoldSamples; ++j) {
-    for (int i = 0; i < kFoldSamples; ++i) {
-      const double u = s.u0 + (s.u1 - s.u0) * i / (kFoldSamples - 1);
-      const double v = s.v0 + (s.v1 - s.v0) * j / (kFoldSamples - 1);
-      const SurfaceDerivs d = evaluate_derivs(s, u, v, 1);
-      jac.push_back(cross(d.su, d.sv));
-      sum += jac.back();
-    }
-  }
-  double against = 0, total = 0;
-  for (const Vec3d& j : jac) {
-    total += norm(j);
-    if (dot(j, sum) < 0) against += norm(j);
-  }
-  return total > 0 && against > kFoldShare * total;
-}
-
-bool is_sheared(const Patch& p, const GridLines& lines, double h) {
+// The normal samples of a sheared patch, or nothing: its grid has kShearRatio times the cells its
+// area needs, and it is kShearMinWidth edges wide or its Jacobian folds (su x sv against its mean
+// over more than kFoldShare of |su x sv|: a grid of it would cross itself).
+std::optional<NormalSamples> sheared_samples(const Patch& p, const GridLines& lines, double h) {
   const double cells = double(lines.u.size() - 1) * double(lines.v.size() - 1);
-  if (cells < kShearMinCells) return false;
+  if (cells < kShearMinCells) return std::nullopt;
   const double area = patch_extent(p).grid_area;
-  if (!(area > 0) || cells <= kShearRatio * area / (h * h)) return false;
+  if (!(area > 0) || cells <= kShearRatio * area / (h * h)) return std::nullopt;
   const NurbsSurface& s = p.surface;
   const double longest_side = std::max({iso_line_length(s, true, s.v0, s.u0, s.u1, kSideSamples),
                                         iso_line_length(s, true, s.v1, s.u0, s.u1, kSideSamples),
                                         iso_line_length(s, false, s.u0, s.v0, s.v1, kSideSamples),
                                         iso_line_length(s, false, s.u1, s.v0, s.v1, kSideSamples)});
-  return area >= kShearMinWidth * h * longest_side || folds(s);
+  NormalSamples ns = sample_normals(s);
+  const double len = norm(ns.sum);
+  const bool folds = len > 0 && ns.share_beyond(ns.sum / len, 0) > kFoldShare;
+  if (area >= kShearMinWidth * h * longest_side || folds) return ns;
+  return std::nullopt;
 }
 
 struct PatchResult {
@@ -91,15 +77,15 @@ PatchResult mesh_patch(const Patch& p, const TessellateOptions& o) {
   const NurbsSurface& s = p.surface;
   const double merge_tol = kMergeFraction * o.chord_tolerance;
   PatchResult r;
-  bool sheared = false;
+  std::optional<NormalSamples> sheared;
   if (p.loops.empty()) {
     const Closure c = detect_closure(s, merge_tol);
     const GridLines lines = grid_lines(s, o.edge_length, o.limits, c.closed_u ? kMinClosedCells : 1,
                                        c.closed_v ? kMinClosedCells : 1);
-    sheared = !c.closed_u && !c.closed_v && is_sheared(p, lines, o.edge_length);
+    if (!c.closed_u && !c.closed_v) sheared = sheared_samples(p, lines, o.edge_length);
     if (sheared) {
       // The domain's sides as one loop, the grid thinned inside: a structured grid would crowd.
-      r.mesh = trimmed_mesh(p, lines, o.edge_length, o.chord_tolerance, true);
+      r.mesh = trimmed_mesh(p, lines, o.edge_length, o.chord_tolerance, &*sheared);
     } else {
       r.mesh = grid_mesh(s, lines);
       join_seams(r.mesh, lines.u.size(), lines.v.size(), c);
@@ -108,8 +94,9 @@ PatchResult mesh_patch(const Patch& p, const TessellateOptions& o) {
     }
   } else {
     const GridLines lines = grid_lines(s, o.edge_length, o.limits);
-    sheared = is_sheared(p, lines, o.edge_length);
-    r.mesh = trimmed_mesh(p, lines, o.edge_length, o.chord_tolerance, sheared);
+    sheared = sheared_samples(p, lines, o.edge_length);
+    r.mesh =
+        trimmed_mesh(p, lines, o.edge_length, o.chord_tolerance, sheared ? &*sheared : nullptr);
   }
   const CollapsedSides collapsed = detect_collapsed(s, merge_tol);
   const ChordSampling sampling =

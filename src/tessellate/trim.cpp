@@ -122,62 +122,37 @@ std::vector<std::uint8_t> thin_in_3d(std::span<const Vec3d> fixed, std::span<con
   return keep;
 }
 
-// A plane on which a sheared patch is a graph: through its centre, normal to its area-weighted
-// mean normal (su x sv), valid when the sampled normals are within 75 degrees of it, but for
-// samples that carry at most kChartFoldShare of the total |su x sv|: a patch with two sides in
-// line folds over by a hair where its Jacobian vanishes (ship_449's keel plate, DE 8385), and
+// A plane on which a sheared patch is a graph: through the centre of its samples, normal to their
+// area-weighted mean normal (su x sv), valid when the normals are within 75 degrees of it, but
+// for samples that carry at most kChartFoldShare of the total |su x sv|: a patch with two sides
+// in line folds over by a hair where its Jacobian vanishes (ship_449's keel plate, DE 8385), and
 // the loop's samples and the thinning keep the mesh out of the fold.
 constexpr double kChartCosTilt = 0.26;  // cos 75 degrees
 constexpr double kChartFoldShare = 0.02;
-constexpr std::size_t kChartSamples = 33;
 
 struct PlaneChart {
   Vec3d origin, e1, e2;
   Vec2d operator()(const Vec3d& p) const { return {dot(p - origin, e1), dot(p - origin, e2)}; }
 };
 
-std::optional<PlaneChart> plane_chart(const NurbsSurface& s, const GridLines& lines) {
-  const auto pick = [](const std::vector<double>& l, std::size_t k, std::size_t n) {
-    return l[(k * (l.size() - 1)) / (n - 1)];
-  };
-  const std::size_t nu = std::min(kChartSamples, lines.u.size());
-  const std::size_t nv = std::min(kChartSamples, lines.v.size());
-  if (nu < 2 || nv < 2) return std::nullopt;
-  std::vector<Vec3d> jac, at;
-  for (std::size_t j = 0; j < nv; ++j) {
-    for (std::size_t i = 0; i < nu; ++i) {
-      const SurfaceDerivs d = evaluate_derivs(s, pick(lines.u, i, nu), pick(lines.v, j, nv), 1);
-      jac.push_back(cross(d.su, d.sv));
-      at.push_back(d.p);
-    }
-  }
-  Vec3d sum{}, centre{};
-  double mean = 0;
-  for (std::size_t k = 0; k < jac.size(); ++k) {
-    sum += jac[k];
-    centre += at[k];
-    mean += norm(jac[k]);
-  }
-  mean /= double(jac.size());
-  const double len = norm(sum);
-  if (!(len > 0) || !(mean > 0)) return std::nullopt;
-  const Vec3d n = sum / len;
-  double off = 0;  // the samples' share of |su x sv| that tilts past the bound
-  for (const Vec3d& j : jac) {
-    const double m = norm(j);
-    if (dot(j, n) < kChartCosTilt * m) off += m;
-  }
-  if (off > kChartFoldShare * mean * double(jac.size())) return std::nullopt;
+std::optional<PlaneChart> plane_chart(const NormalSamples& ns) {
+  const double len = norm(ns.sum);
+  if (!(len > 0) || ns.at.empty()) return std::nullopt;
+  const Vec3d n = ns.sum / len;
+  if (ns.share_beyond(n, kChartCosTilt) > kChartFoldShare) return std::nullopt;
+  Vec3d centre{};
+  for (const Vec3d& q : ns.at) centre += q;
   // Any unit vector normal to n, then the third by the right-hand rule (counter-clockwise in the
   // chart is counter-clockwise seen from the side su x sv points to).
   const Vec3d t = std::abs(n.x) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
   const Vec3d e1 = cross(t, n) / norm(cross(t, n));
-  return PlaneChart{centre / double(jac.size()), e1, cross(n, e1)};
+  return PlaneChart{centre / double(ns.at.size()), e1, cross(n, e1)};
 }
 
 }  // namespace
 
-PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double tol, bool sheared) {
+PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double tol,
+                       const NormalSamples* sheared) {
   const NurbsSurface& s = p.surface;
   const double speed = std::max({lines.speed_u, lines.speed_v, 1e-300});
   const double tol_uv = 0.5 * tol / speed;
@@ -288,7 +263,7 @@ PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double h, double 
   // normal was not caught by the samples) falls back to the parameter plane.
   std::vector<Tri> tris;
   std::vector<Vec2d> chart_xy;
-  if (const std::optional<PlaneChart> chart = sheared ? plane_chart(s, lines) : std::nullopt) {
+  if (const std::optional<PlaneChart> chart = sheared ? plane_chart(*sheared) : std::nullopt) {
     for (const Vec3d& q : xyz) chart_xy.push_back((*chart)(q));
     try {
       tris = triangulate_region(chart_xy, segments);

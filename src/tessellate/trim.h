@@ -5,6 +5,7 @@
 #include "nurbs/patch.h"
 #include "tessellate/initial_grid.h"
 #include "tessellate/patch_mesh.h"
+#include "tessellate/sample_normals.h"
 
 namespace hm {
 
@@ -14,13 +15,14 @@ namespace hm {
 // loop (by kLoopClearance edges) are added, and the whole is triangulated by a constrained
 // Delaunay triangulation in (u, v) scaled by the mean speeds (so close to isotropic in 3D).
 //
-// sheared: the patch's parameter lines run nearly side by side in 3D somewhere (a three-sided
-// plate modelled with four sides, two of them almost in line), so the grid crowds there and the
-// scaled (u, v) plane is far from isotropic. The grid points are then thinned to about
-// kShearedSpacing edges apart in 3D, and the triangulation is improved by 3D edge flips.
-// Throws GeometryError when the loops cannot be triangulated.
+// sheared (its normal samples; null when not): the patch's parameter lines run nearly side by
+// side in 3D somewhere (a three-sided plate modelled with four sides, two of them almost in
+// line), so the grid crowds there and the scaled (u, v) plane is far from isotropic. The grid
+// points are then thinned to about kShearedSpacing edges apart in 3D, the points triangulated on
+// a plane the patch is a graph over (when the samples show one), and the triangulation improved
+// by 3D edge flips. Throws GeometryError when the loops cannot be triangulated.
 PatchMesh trimmed_mesh(const Patch& p, const GridLines& lines, double edge_length,
-                       double chord_tolerance, bool sheared = false);
+                       double chord_tolerance, const NormalSamples* sheared = nullptr);
 
 inline constexpr double kLoopClearance = 0.5;
 inline constexpr double kShearedSpacing = 0.7;
