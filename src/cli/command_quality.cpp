@@ -97,7 +97,7 @@ nlohmann::json deviation_json(const std::string& iges, const NurbsDeviation& d) 
           {"far_from_hull", m.max > kFarFromHull * d.length}};
 }
 
-void print_hydrostatics(const Hydrostatics& h) {
+void print_mesh_hydrostatics(const Hydrostatics& h) {
   std::printf("\n  hydrostatics at the waterline (mesh)\n");
   std::printf("  %-30s %.6g m^3\n", "displaced volume", h.volume);
   std::printf("  %-30s %.6g m^2\n", "wetted area", h.wetted_area);
@@ -163,7 +163,7 @@ int run_quality(const QualityCliOptions& o, const GlobalOptions& g) {
         "%.3g deg\n",
         "panel min angle", 100 * angles.share_20, 100 * angles.share_30, 100 * angles.share_40,
         angles.p05, angles.p50, angles.p95);
-    print_hydrostatics(hydro);
+    print_mesh_hydrostatics(hydro);
     if (deviation) print_deviation(o.iges, *deviation);
   }
   std::fflush(stdout);  // the warnings below go after the report, also when both go to one pipe

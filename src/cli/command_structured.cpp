@@ -32,8 +32,8 @@ namespace hm::cli {
 namespace {
 
 // Fine triangles per panel for the internal surface the rows are cut from.
-constexpr std::size_t kFinePerPanel = 10;
-constexpr std::size_t kFineMin = 20'000, kFineMax = 1'000'000;
+constexpr std::size_t kRowFinePerPanel = 10;
+constexpr std::size_t kRowFineMin = 20'000, kRowFineMax = 1'000'000;
 
 struct StructuredCommand {
   std::string file, output, units, blocks, size;
@@ -82,9 +82,9 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   // mesher tries twice more, twice as dense, before it gives up on a merge (issue 4's open
   // failures; npl_round_bilge.iges passes at 80,000 triangles, and fails at most counts below).
   pa.finer_retries = 2;
-  pa.fine_triangles =
-      c.triangles > 0 ? c.triangles
-                      : std::clamp(kFinePerPanel * c.structured.target_panels, kFineMin, kFineMax);
+  pa.fine_triangles = c.triangles > 0 ? c.triangles
+                                      : std::clamp(kRowFinePerPanel * c.structured.target_panels,
+                                                   kRowFineMin, kRowFineMax);
   PreparedHull ph;
   prepare_hull(pa, ph);
   const SurfaceMesh& fine = ph.fine();

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/test_json.h"
 #include "support/test_support.h"
 
 namespace hm {

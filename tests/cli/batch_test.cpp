@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "support/test_json.h"
 #include "support/test_support.h"
 
 namespace hm {

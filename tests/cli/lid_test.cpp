@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "support/test_json.h"
 #include "support/test_support.h"
 
 namespace hm {

@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/test_json.h"
 #include "support/test_support.h"
 
 namespace hm {

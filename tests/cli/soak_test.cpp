@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/test_json.h"
 #include "support/test_support.h"
 
 namespace {

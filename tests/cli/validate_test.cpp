@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cli/execute.h"
+#include "support/test_json.h"
 #include "support/test_support.h"
 
 namespace hm::cli {

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "support/test_json.h"
+
 extern char** environ;
 
 namespace hm::test {

@@ -5,7 +5,6 @@
 #include <tbb/task_arena.h>
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 
@@ -19,9 +18,6 @@ std::filesystem::path shared_hull(const std::string& name);
 std::filesystem::path scratch_dir(const std::string& test_name);
 // Path of the built hullmesh executable.
 std::filesystem::path hullmesh_exe();
-
-// A JSON file's value; a discarded value (is_discarded()) when it is missing or not JSON.
-nlohmann::json read_json(const std::filesystem::path& path);
 
 // A path quoted for the shell that run_hullmesh and spawn_hullmesh go through.
 inline std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
