@@ -4,11 +4,15 @@
 //
 // collect seeds (border vertices lying on a lower-numbered patch, checked on the NURBS through
 // the Embree closest-point query) -> grow the covered region over each patch -> apply: drop
-// covered faces, and move each covered corner of a straddling face to where its edges leave the
-// patches below (bisection on their exact surfaces).
+// covered faces, and move each covered corner of a straddling face onto the border of the
+// patches below (the nearest point of their border edges inside its faces, else where its edges
+// leave them, by bisection on their exact surfaces). An overlap narrower than an edge covers no
+// face; its border vertices are cut the same way, so that the two borders meet for the snap.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/bbox.h"
 #include "core/parallel.h"
@@ -22,6 +26,10 @@ namespace {
 
 // Normals of coincident layers agree to this (either orientation: patches may arrive flipped).
 constexpr double kMinNormalCos = 0.866;  // 30 degrees
+
+// A patch's border lying on a lower patch across less than this share of its border edges is
+// left to the snap, as a gap would be.
+constexpr double kNarrowShare = 0.25;
 
 // The lowest-numbered patch below the vertex's own whose surface the vertex lies on, or
 // kInvalid.
@@ -158,6 +166,143 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
   return sub;
 }
 
+// The nearest point within `reach` of covered vertex v (patch p) on the border of the region the
+// patches below p cover: on a lower patch's border edge, and on no other lower patch. Empty when
+// there is none.
+std::optional<Vec3d> nearest_exit(const SurfaceMesh& m, const Border& b, const SegmentGrid& grid,
+                                  const HullQuery& query, Index v, PatchId p,
+                                  std::span<const Index> star, double reach, double distance) {
+  const Vec3d& x = m.positions[v];
+  const auto covered_by = [&](const Vec3d& q, PatchId first, PatchId last) {
+    if (first >= last) return false;
+    const ClosestPoint cp = query.closest_point_in_range(q, first, last, 20 * distance);
+    return cp.valid() && cp.distance <= distance;
+  };
+  std::optional<Vec3d> best;
+  double best_d = reach;
+  Index best_edge = kInvalid;
+  grid.for_each_near(x, reach, [&](Index e) {
+    const BorderEdge& be = b.edges[e];
+    if (be.patch >= p) return;
+    const SegmentPoint sp = closest_on_segment(x, m.positions[be.v0], m.positions[be.v1]);
+    if (sp.distance > best_d || (sp.distance == best_d && e > best_edge)) return;
+    const Vec3d q = m.positions[be.v0] + sp.t * (m.positions[be.v1] - m.positions[be.v0]);
+    if (covered_by(q, 0, be.patch) || covered_by(q, be.patch + 1, p)) return;
+    // A lower border that runs along p's own border (the hull's outline, where both patches
+    // end) is no cut: the region ends there for p as well.
+    const Vec3d d = normalized(m.positions[be.v1] - m.positions[be.v0]);
+    bool alongside = false;
+    grid.for_each_near(q, 3 * distance, [&](Index o) {
+      const BorderEdge& ob = b.edges[o];
+      if (alongside || ob.patch != p) return;
+      const Vec3d a = m.positions[ob.v0], c = m.positions[ob.v1];
+      if (closest_on_segment(q, a, c).distance > 3 * distance) return;
+      alongside = std::abs(dot(normalized(c - a), d)) > 0.9;
+    });
+    if (alongside) return;
+    // The cut must run through what is left of p around v: q within one of v's faces.
+    bool inside = false;
+    for (Index f : star) {
+      const Face& t = m.faces[f];
+      const Vec3d a = m.positions[t[0]], e1 = m.positions[t[1]] - a, e2 = m.positions[t[2]] - a;
+      const Vec3d n = cross(e1, e2);
+      const double nn = dot(n, n);
+      if (!(nn > 0)) continue;
+      const Vec3d r = q - a;
+      const double l1 = dot(cross(r, e2), n) / nn, l2 = dot(cross(e1, r), n) / nn;
+      const double off = std::abs(dot(r, n)) / std::sqrt(nn);
+      constexpr double kSlack = 1e-6;
+      if (l1 >= -kSlack && l2 >= -kSlack && l1 + l2 <= 1 + kSlack && off <= 3 * distance) {
+        inside = true;
+        break;
+      }
+    }
+    if (!inside) return;
+    best_d = sp.distance;
+    best_edge = e;
+    best = q;
+  });
+  return best;
+}
+
+// Collapses each moved[i] into onto_vertex[i] (where valid) among the kept faces of one patch:
+// the faces on their edge go, the others take the neighbour. Skipped where the two have a common
+// neighbour off that edge (the collapse would pinch the patch).
+void collapse_onto_neighbours(SurfaceMesh& m, std::span<const Index> patch_faces,
+                              std::span<const Index> moved, std::span<const Index> onto_vertex,
+                              std::vector<std::uint8_t>& keep, OverlapStats& stats) {
+  if (std::all_of(onto_vertex.begin(), onto_vertex.end(), [](Index u) { return u == kInvalid; })) {
+    return;
+  }
+  std::vector<std::pair<Index, Index>> vertex_face;  // (vertex, face) of kept faces, sorted
+  for (Index f : patch_faces) {
+    if (!keep[f]) continue;
+    for (int c = 0; c < 3; ++c) vertex_face.push_back({m.faces[f][c], f});
+  }
+  std::sort(vertex_face.begin(), vertex_face.end());
+  const auto faces_at = [&](Index v) {
+    const auto lo =
+        std::lower_bound(vertex_face.begin(), vertex_face.end(), std::pair{v, Index(0)});
+    auto hi = lo;
+    while (hi != vertex_face.end() && hi->first == v) ++hi;
+    return std::span<const std::pair<Index, Index>>(vertex_face.data() + (lo - vertex_face.begin()),
+                                                    std::size_t(hi - lo));
+  };
+  const auto neighbours = [&](Index v) {
+    std::vector<Index> n;
+    for (const auto& [_, f] : faces_at(v)) {
+      for (int c = 0; c < 3; ++c) {
+        if (m.faces[f][c] != v) n.push_back(m.faces[f][c]);
+      }
+    }
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+    return n;
+  };
+  // The face lists are of the patch before any collapse: a collapse next to an earlier one
+  // waits (the vertex stays where it is).
+  std::vector<Index> touched;
+  const auto untouched = [&](Index v) {
+    for (const auto& [_, f] : faces_at(v)) {
+      if (std::binary_search(touched.begin(), touched.end(), f)) return false;
+    }
+    return true;
+  };
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    const Index v = moved[i], u = onto_vertex[i];
+    if (u == kInvalid || !untouched(v) || !untouched(u)) continue;
+    const std::vector<Index> nv = neighbours(v), nu = neighbours(u);
+    std::vector<Index> common;
+    std::set_intersection(nv.begin(), nv.end(), nu.begin(), nu.end(), std::back_inserter(common));
+    std::vector<Index> on_edge, apexes;
+    for (const auto& [_, f] : faces_at(v)) {
+      const Face& t = m.faces[f];
+      if (!keep[f] || (t[0] != u && t[1] != u && t[2] != u)) continue;
+      on_edge.push_back(f);
+      for (int c = 0; c < 3; ++c) {
+        if (t[c] != u && t[c] != v) apexes.push_back(t[c]);
+      }
+    }
+    std::sort(apexes.begin(), apexes.end());
+    if (on_edge.empty() || apexes != common) continue;
+    for (const auto& [_, f] : faces_at(v)) touched.push_back(f);
+    for (const auto& [_, f] : faces_at(u)) touched.push_back(f);
+    std::sort(touched.begin(), touched.end());
+    for (const auto& [_, f] : faces_at(v)) {
+      if (!keep[f]) continue;
+      if (std::find(on_edge.begin(), on_edge.end(), f) != on_edge.end()) {
+        keep[f] = 0;
+        ++stats.triangles;
+        stats.area += face_area(m.positions, m.faces[f]);
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) {
+        if (m.faces[f][c] == v) m.faces[f][c] = u;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& b,
@@ -187,11 +332,47 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   const HullQuery query(patches, faces_near(m, candidates, patches.size(), 20 * distance, false));
   stats.changed = true;  // from here on faces may go and corners move
 
+  // A border vertex on a border it shares with a lower patch (the two continue each other:
+  // inward directions opposite) lies on that patch without overlapping it: no cut starts there
+  // unless faces around it are covered. Along the hull's outline, where both patches end side by
+  // side, a cut does start.
+  const SegmentGrid border_grid(m.positions, b.edges);
+  std::vector<std::uint8_t> shared(m.vertex_count(), 0);
+  {
+    std::vector<Vec3d> edge_in(b.edges.size());
+    std::vector<Vec3d> vertex_in(m.vertex_count(), Vec3d{});
+    for (std::size_t e = 0; e < b.edges.size(); ++e) {
+      edge_in[e] = edge_inward(m, b.edges[e]);
+      vertex_in[b.edges[e].v0] += edge_in[e];
+      vertex_in[b.edges[e].v1] += edge_in[e];
+    }
+    parallel_for(0, b.vertices.size(), [&](std::size_t i) {
+      const Index v = b.vertices[i];
+      const Vec3d& x = m.positions[v];
+      double best = 3 * distance;
+      Index best_edge = kInvalid;
+      border_grid.for_each_near(x, best, [&](Index e) {
+        const BorderEdge& be = b.edges[e];
+        if (be.patch >= m.vertex_patch[v]) return;
+        const double d = closest_on_segment(x, m.positions[be.v0], m.positions[be.v1]).distance;
+        if (d < best || (d == best && e < best_edge)) {
+          best = d;
+          best_edge = e;
+        }
+      });
+      if (best_edge != kInvalid && dot(edge_in[best_edge], vertex_in[v]) < 0) shared[v] = 1;
+    });
+  }
+
   // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
   // ring by ring: each ring is checked in parallel and committed in order).
   std::vector<std::vector<Index>> ring(m.vertex_count());
   for (const Face& f : m.faces) {
-    for (int c = 0; c < 3; ++c) ring[f[c]].push_back(f[(c + 1) % 3]);
+    for (int c = 0; c < 3; ++c) {
+      // Both ways: a border vertex's last neighbour follows it in no face.
+      ring[f[c]].push_back(f[(c + 1) % 3]);
+      ring[f[(c + 1) % 3]].push_back(f[c]);
+    }
   }
   std::vector<PatchId> cover(m.vertex_count(), kInvalid);
   std::vector<std::uint8_t> checked(m.vertex_count(), 0);
@@ -227,10 +408,37 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
     if (progress.cancelled()) return stats;
   }
 
-  // A covered vertex that no fully covered face holds lies on a covered sliver one edge wide;
-  // moving it would fold the faces on its two sides over each other. It stays, and snapping
-  // handles the sliver.
+  // Border neighbours of each border vertex (along its own patch's border).
+  std::vector<std::vector<Index>> border_next(m.vertex_count());
+  for (const BorderEdge& e : b.edges) {
+    border_next[e.v0].push_back(e.v1);
+    border_next[e.v1].push_back(e.v0);
+  }
+
+  // Which covered vertices are cut: strip_only marks the border vertices of an overlap narrower
+  // than an edge.
+  std::vector<std::uint8_t> strip_only(m.vertex_count(), 0);
   {
+    // A face whose corners lie on different lower patches may span a gap between them: it is
+    // covered only if its centroid is too. Where it is not, its corners stay.
+    std::vector<std::uint8_t> spans_gap(m.face_count(), 0);
+    parallel_for(0, m.face_count(), [&](std::size_t f) {
+      const Face& t = m.faces[f];
+      if (cover[t[0]] == kInvalid || cover[t[1]] == kInvalid || cover[t[2]] == kInvalid) return;
+      if (cover[t[0]] == cover[t[1]] && cover[t[1]] == cover[t[2]]) return;
+      const ClosestPoint cp = query.closest_point_in_range(face_centroid(m.positions, t), 0,
+                                                           m.face_patch[f], 20 * distance);
+      spans_gap[f] = !(cp.valid() && cp.distance <= 3 * distance);
+    });
+    for (std::size_t f = 0; f < m.face_count(); ++f) {
+      if (!spans_gap[f]) continue;
+      for (int c = 0; c < 3; ++c) cover[m.faces[f][c]] = kInvalid;
+    }
+    // An inner covered vertex that no fully covered face holds lies under a covered sliver one
+    // edge wide (a thin strip lying on the patch); moving it would fold the faces on its two
+    // sides over each other. It stays, and snapping handles the sliver. A covered vertex on the
+    // patch's own border is where an overlap narrower than an edge begins: it moves inwards to
+    // where the patch leaves the one below, which cuts the overlap away.
     std::vector<std::uint8_t> in_removed(m.vertex_count(), 0);
     for (const Face& t : m.faces) {
       if (cover[t[0]] != kInvalid && cover[t[1]] != kInvalid && cover[t[2]] != kInvalid) {
@@ -238,15 +446,13 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
       }
     }
     for (std::size_t v = 0; v < cover.size(); ++v) {
-      if (!in_removed[v]) cover[v] = kInvalid;
+      if (in_removed[v] || cover[v] == kInvalid) continue;
+      if (border_next[v].empty() || shared[v]) {
+        cover[v] = kInvalid;
+      } else {
+        strip_only[v] = 1;
+      }
     }
-  }
-
-  // Border neighbours of each border vertex (along its own patch's border).
-  std::vector<std::vector<Index>> border_next(m.vertex_count());
-  for (const BorderEdge& e : b.edges) {
-    border_next[e.v0].push_back(e.v1);
-    border_next[e.v1].push_back(e.v0);
   }
 
   // Apply, patch by patch: covered faces go, and covered corners of straddling faces move to
@@ -300,26 +506,44 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
         }
       }
     }
+    std::vector<std::uint8_t> keeps_outline(moved.size(), 0);
     for (std::size_t i = 0; i < moved.size(); ++i) {
       const auto& along = border_next[moved[i]];
       std::vector<Index> on_border;
       for (Index u : out_to[i]) {
         if (std::find(along.begin(), along.end(), u) != along.end()) on_border.push_back(u);
       }
-      if (!along.empty() && !on_border.empty()) out_to[i] = std::move(on_border);
+      if (!along.empty() && !on_border.empty()) {
+        out_to[i] = std::move(on_border);
+        keeps_outline[i] = 1;
+      }
     }
     const auto on_lower = [&](const Vec3d& x) {
       // The chord of an edge strays from the surface by up to the tessellation tolerance.
       const ClosestPoint cp = query.closest_point_in_range(x, 0, PatchId(p), 20 * distance);
       return cp.valid() && cp.distance <= 3 * distance;
     };
-    std::vector<Vec3d> target(moved.size());
+    // The faces that stay around each moved corner.
+    std::vector<std::vector<Index>> star(moved.size());
+    for (Index f : straddling) {
+      for (int c = 0; c < 3; ++c) {
+        const Index v = m.faces[f][c];
+        if (cover[v] == kInvalid) continue;
+        star[std::size_t(std::lower_bound(moved.begin(), moved.end(), v) - moved.begin())]
+            .push_back(f);
+      }
+    }
+    std::vector<Vec3d> along_edge(moved.size()), onto_border(moved.size());
+    std::vector<Index> onto_vertex(moved.size(), kInvalid);
     parallel_for(0, moved.size(), [&](std::size_t i) {
       const Vec3d from = m.positions[moved[i]];
       double best = std::numeric_limits<double>::infinity();
-      target[i] = from;
+      along_edge[i] = from;
+      double reach = 0, fraction = 1;
+      Index toward = kInvalid;
       for (Index u : out_to[i]) {
         const Vec3d to = m.positions[u];
+        reach = std::max(reach, norm(to - from));
         double lo = 0, hi = 1;  // covered at lo, not at hi
         for (int it = 0; it < 40 && (hi - lo) * norm(to - from) > 1e-3 * distance; ++it) {
           const double mid = 0.5 * (lo + hi);
@@ -329,11 +553,54 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
         const double d = norm(exit - from);
         if (d < best) {
           best = d;
-          target[i] = exit;
+          along_edge[i] = exit;
+          fraction = lo;
+          toward = u;
         }
       }
+      // An outline vertex whose border does not leave the patches below before its neighbour
+      // would land on that neighbour: it collapses into it instead (below).
+      if (keeps_outline[i] && fraction > 0.99) {
+        onto_vertex[i] = toward;
+        along_edge[i] = onto_border[i] = from;
+        return;
+      }
+      onto_border[i] = keeps_outline[i] ? along_edge[i]
+                                        : nearest_exit(m, b, border_grid, query, moved[i],
+                                                       PatchId(p), star[i], reach, distance)
+                                              .value_or(along_edge[i]);
     });
+    // The nearest point of the covering border is the cut itself, also where the overlap is
+    // narrower than an edge and no edge leaves the patches below near it. A face it would turn
+    // over takes the exits along its edges instead.
+    std::vector<Vec3d> target = onto_border;
+    const auto slot = [&](Index v) {
+      return std::size_t(std::lower_bound(moved.begin(), moved.end(), v) - moved.begin());
+    };
+    for (Index f : straddling) {
+      const Face& t = m.faces[f];
+      std::array<Vec3d, 3> x;
+      for (int c = 0; c < 3; ++c) {
+        x[c] = cover[t[c]] != kInvalid ? target[slot(t[c])] : m.positions[t[c]];
+      }
+      const Vec3d before_n =
+          cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+      if (dot(cross(x[1] - x[0], x[2] - x[0]), before_n) > 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        if (cover[t[c]] != kInvalid) target[slot(t[c])] = along_edge[slot(t[c])];
+      }
+    }
+    // An overlap this narrow is a gap of the other sign: snapping closes it as it closes gaps,
+    // and a cut would leave edges a fraction of their length.
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      const Index v = moved[i];
+      if (!strip_only[v]) continue;
+      const auto at = std::lower_bound(b.vertices.begin(), b.vertices.end(), v);
+      const double edge = b.edge_length[std::size_t(at - b.vertices.begin())];
+      if (norm(target[i] - m.positions[v]) < kNarrowShare * edge) target[i] = m.positions[v];
+    }
     for (std::size_t i = 0; i < moved.size(); ++i) m.positions[moved[i]] = target[i];
+    collapse_onto_neighbours(m, faces_of[p], moved, onto_vertex, keep, stats);
     double after = 0;
     for (Index f : straddling) after += face_area(m.positions, m.faces[f]);
     stats.area += before - after;

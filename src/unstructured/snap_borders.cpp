@@ -22,6 +22,9 @@ namespace {
 // A vertex this close to an edge end (as a fraction of the edge) joins that end rather than
 // splitting the edge: the split would leave a sliver.
 constexpr double kEndFraction = 0.3;
+// A vertex whose nearest point on an edge is this close to an end (as a fraction of the edge)
+// lies beyond that end.
+constexpr double kBeyondEnd = 1e-3;
 
 struct Split {
   Index edge = kInvalid;  // border edge index
@@ -232,6 +235,10 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     if (s.edge == kInvalid) continue;
     const BorderEdge& e = b.edges[s.edge];
     if (in_cluster(i, e.patch)) continue;
+    // Nearest at an end of the edge, or all but at it: the vertex lies beyond the edge, not on
+    // it. It joins that end or nothing; a split there would give a face with three corners all
+    // but in line.
+    if (std::min(s.t, 1 - s.t) <= kBeyondEnd) continue;
     const Index r = rep[i];
     if (rep[local[e.v0]] == r || rep[local[e.v1]] == r) continue;
     // The split gives the edges from the vertex to both ends one more face. Where the welds have

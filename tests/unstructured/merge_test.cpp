@@ -215,6 +215,36 @@ TEST(Merge, PairwiseOverlapIsCutAway) {
               total_area(m.merged.mesh), 2e-3 * total_area(m.merged.mesh));
 }
 
+// Overlaps of 2-5% of a patch on hulls of 4 to 12 patches: across the seams they are narrower
+// than an edge (wigley, 12 patches at 2%: 0.33 m under 1 m edges), so no face lies wholly on the
+// patch below and only the border vertices can be cut back. Before that cut these hulls kept a
+// double layer at every seam (wigley: 11 boundary loops; chine: an edge with three faces).
+TEST(Merge, OverlapsNarrowerThanAnEdgeAreCut) {
+  struct Case {
+    HullKind kind;
+    int patches;
+    double overlap;
+  };
+  for (const Case& c : {Case{HullKind::kWigley, 12, 0.02}, Case{HullKind::kRoundBilge, 12, 0.05},
+                        Case{HullKind::kChine, 4, 0.05}}) {
+    HullDefects d;
+    d.overlap = c.overlap;
+    const Merged m = merge_of(generated(c.kind, c.patches, d).patches);
+    const Merged ref = merge_of(generated(c.kind, c.patches).patches);
+    const std::string what = std::to_string(c.patches) + " patches, overlap " +
+                             std::to_string(c.overlap) + ", kind " +
+                             std::to_string(static_cast<int>(c.kind));
+    expect_clean_half_hull(m, what);
+    EXPECT_GT(m.merged.report.overlap_area_removed, 0.0) << what;
+    // The hull is covered once: its area is that of the hull without overlaps, to the issue's
+    // 0.1% (measured: within 3e-6). The volume, closed over the outline, moves with the few
+    // outline points the cut moves (measured: within 0.22%).
+    EXPECT_NEAR(total_area(m.merged.mesh) / total_area(ref.merged.mesh), 1.0, 1e-3) << what;
+    EXPECT_NEAR(m.merged.report.enclosed_volume / ref.merged.report.enclosed_volume, 1.0, 5e-3)
+        << what;
+  }
+}
+
 TEST(Merge, SameBytesWithOneTwoAndEightThreads) {
   HullDefects d;
   d.gap = 0.05;
