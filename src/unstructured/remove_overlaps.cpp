@@ -173,10 +173,12 @@ std::optional<Vec3d> nearest_exit(const SurfaceMesh& m, const Border& b, const S
                                   const HullQuery& query, Index v, PatchId p,
                                   std::span<const Index> star, double reach, double distance) {
   const Vec3d& x = m.positions[v];
+  // q lies on a chord of a border, which strays from the surface by up to the tessellation
+  // tolerance (as on_lower allows).
   const auto covered_by = [&](const Vec3d& q, PatchId first, PatchId last) {
     if (first >= last) return false;
     const ClosestPoint cp = query.closest_point_in_range(q, first, last, 20 * distance);
-    return cp.valid() && cp.distance <= distance;
+    return cp.valid() && cp.distance <= 3 * distance;
   };
   std::optional<Vec3d> best;
   double best_d = reach;
