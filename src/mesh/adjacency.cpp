@@ -129,6 +129,52 @@ std::vector<BoundaryLoop> chain_boundary(std::span<const Face> faces, const Edge
 
 }  // namespace
 
+void reverse_in_adjacency(EdgeAdjacency& adj, std::span<const Face> faces,
+                          std::span<const std::uint8_t> reversed) {
+  if (reversed.size() != faces.size() || adj.slot_edge.size() != 4 * faces.size()) {
+    throw GeometryError("reverse_in_adjacency: the adjacency is of another mesh");
+  }
+  // Corner c of a reversed face is corner 2 - c of the face it was (for c < 3).
+  const auto corner = [](std::uint8_t c) -> std::uint8_t { return c < 3 ? 2 - c : c; };
+  for (std::size_t s = 0; s < adj.opposite_face.size(); ++s) {
+    const Index g = adj.opposite_face[s];
+    if (g != kInvalid && reversed[g]) adj.opposite_corner[s] = corner(adj.opposite_corner[s]);
+  }
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (!reversed[f]) continue;
+    if (!is_triangle(faces[f])) {
+      throw GeometryError("reverse_in_adjacency: face " + std::to_string(f) + " is not a triangle");
+    }
+    std::swap(adj.slot_edge[4 * f], adj.slot_edge[4 * f + 2]);
+    std::swap(adj.opposite_face[4 * f], adj.opposite_face[4 * f + 2]);
+    std::swap(adj.opposite_corner[4 * f], adj.opposite_corner[4 * f + 2]);
+  }
+  adj.inconsistent_edges.clear();
+  for (std::size_t e = 0; e < adj.edges.size(); ++e) {
+    MeshEdge& me = adj.edges[e];
+    const Index f = me.first_slot / 4;
+    if (reversed[f]) me.first_slot = 4 * f + corner(std::uint8_t(me.first_slot % 4));
+    if (me.uses != 2) continue;
+    const Index s0 = me.first_slot;
+    const Index s1 = 4 * adj.opposite_face[s0] + adj.opposite_corner[s0];
+    me.same_direction = directed(faces, s0)[0] == directed(faces, s1)[0];
+    if (me.same_direction) adj.inconsistent_edges.push_back(Index(e));
+  }
+  adj.boundary_loops = chain_boundary(faces, adj);
+}
+
+std::vector<Index> boundary_slots(std::span<const Face> faces, std::size_t vertex_count) {
+  const std::vector<EdgeKey> keys = collect_keys(faces, vertex_count);
+  std::vector<Index> out;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].key == keys[i].key) ++j;
+    if (j == i + 1) out.push_back(keys[i].slot);
+    i = j;
+  }
+  return out;
+}
+
 EdgeAdjacency build_edge_adjacency(std::span<const Face> faces, std::size_t vertex_count) {
   const std::vector<EdgeKey> keys = collect_keys(faces, vertex_count);
   EdgeAdjacency adj;

@@ -54,4 +54,16 @@ struct EdgeAdjacency {
 // edge a -> a is not an edge). Throws GeometryError when a face names a vertex >= vertex_count.
 EdgeAdjacency build_edge_adjacency(std::span<const Face> faces, std::size_t vertex_count);
 
+// Brings `adj` up to date after the triangles with reversed[f] != 0 were reversed by swapping
+// their corners 1 and 2 (faces as they are now): the same as building it again, for a fraction
+// of the cost. Throws GeometryError when adj is not of this mesh or a reversed face is no
+// triangle.
+void reverse_in_adjacency(EdgeAdjacency& adj, std::span<const Face> faces,
+                          std::span<const std::uint8_t> reversed);
+
+// The corner slot of every boundary edge (used by one face), in the order of
+// EdgeAdjacency::boundary_edges, without the rest of the adjacency: for callers that need only
+// the border.
+std::vector<Index> boundary_slots(std::span<const Face> faces, std::size_t vertex_count);
+
 }  // namespace hm

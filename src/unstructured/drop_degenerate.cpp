@@ -4,8 +4,10 @@
 // lies in the centre plane) both go; wound alike (a face given twice) one stays.
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <utility>
 
+#include "core/parallel.h"
 #include "unstructured/merge_steps.h"
 
 namespace hm::merge {
@@ -32,18 +34,21 @@ std::size_t drop_degenerate(Work& w, double length) {
   std::vector<std::uint8_t> keep(m.face_count());
   // Each face's corners rotated to start at the lowest index: equal triples are the same face,
   // wound alike; equal sorted triples with different rotations are back to back.
-  std::vector<std::pair<std::array<Index, 3>, Index>> by_corners;
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
+  std::vector<std::array<Index, 3>> corners(m.face_count());
+  parallel_for(0, m.face_count(), [&](std::size_t f) {
     const Face& t = m.faces[f];
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
     keep[f] = !repeated && face_area(m.positions, t) > floor;
-    if (keep[f]) {
-      std::array<Index, 3> sorted{t[0], t[1], t[2]};
-      std::sort(sorted.begin(), sorted.end());
-      by_corners.push_back({sorted, static_cast<Index>(f)});
-    }
+    corners[f] = {t[0], t[1], t[2]};
+    std::sort(corners[f].begin(), corners[f].end());
+  });
+  std::vector<std::pair<std::array<Index, 3>, Index>> by_corners;
+  by_corners.reserve(m.face_count());
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    if (keep[f]) by_corners.push_back({corners[f], static_cast<Index>(f)});
   }
-  std::sort(by_corners.begin(), by_corners.end());
+  // Every pair is distinct (the face index), so the parallel sort's order is the serial one.
+  parallel_sort(by_corners.begin(), by_corners.end(), std::less<>{});
   const auto rotated = [&](Index f) {
     const Face& t = m.faces[f];
     const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);

@@ -78,10 +78,10 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   r.widest_gap_closed = s.widest;
   r.degenerate_faces_dropped = merge::drop_degenerate(w, length);
   progress.update(0.7);
-  r.patches_flipped = merge::orient_faces(patches, w);
+  EdgeAdjacency adj;  // of the oriented mesh
+  r.patches_flipped = merge::orient_faces(patches, w, adj);
   // After orienting: the loops must follow one winding to be closed against it.
   // Holes that touch at a vertex chain as one loop until one of them is closed: repeat a little.
-  EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   for (int pass = 0; pass < 3; ++pass) {
     const std::size_t filled = merge::fill_small_holes(w, adj);
     r.holes_filled += filled;

@@ -10,17 +10,14 @@
 
 namespace hm::merge {
 
-Border collect_border(const SurfaceMesh& mesh) {
-  return collect_border(mesh, build_edge_adjacency(mesh.faces, mesh.vertex_count()));
-}
+namespace {
 
-Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj) {
+Border border_of_slots(const SurfaceMesh& mesh, std::span<const Index> slots) {
   Border b;
-  b.edges.reserve(adj.boundary_edges.size());
+  b.edges.reserve(slots.size());
   std::vector<double> sum(mesh.vertex_count(), 0.0);
   std::vector<std::uint32_t> count(mesh.vertex_count(), 0);
-  for (Index e : adj.boundary_edges) {
-    const Index slot = adj.edges[e].first_slot;
+  for (const Index slot : slots) {
     const Face& f = mesh.faces[slot / 4];
     const int c = int(slot % 4);
     const BorderEdge be{f[c], f[(c + 1) % corner_count(f)], slot / 4, mesh.face_patch[slot / 4]};
@@ -37,6 +34,19 @@ Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj) {
     b.edge_length.push_back(sum[v] / count[v]);
   }
   return b;
+}
+
+}  // namespace
+
+Border collect_border(const SurfaceMesh& mesh) {
+  return border_of_slots(mesh, boundary_slots(mesh.faces, mesh.vertex_count()));
+}
+
+Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj) {
+  std::vector<Index> slots(adj.boundary_edges.size());
+  for (std::size_t i = 0; i < slots.size(); ++i)
+    slots[i] = adj.edges[adj.boundary_edges[i]].first_slot;
+  return border_of_slots(mesh, slots);
 }
 
 SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges,
@@ -83,6 +93,27 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
     keys_[i] = items[i].first;
     order_[i] = items[i].second;
   }
+  // Occupied cells in an open-addressing table (load under 1/2): a query looks at 27 or more
+  // cells, most of them empty, and a binary search over every entry cost more than the
+  // distances.
+  std::size_t cells = 0;
+  for (std::size_t i = 0; i < keys_.size(); ++i) cells += i == 0 || keys_[i] != keys_[i - 1];
+  std::size_t slots = 16;
+  while (slots < 2 * cells) slots *= 2;
+  slot_key_.assign(slots, kEmptySlot);
+  slot_first_.assign(slots, 0);
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
+    if (i > 0 && keys_[i] == keys_[i - 1]) continue;
+    std::size_t h = slot_of(keys_[i]);
+    while (slot_key_[h] != kEmptySlot) h = (h + 1) & (slots - 1);
+    slot_key_[h] = keys_[i];
+    slot_first_[h] = i;
+  }
+}
+
+std::size_t SegmentGrid::slot_of(std::uint64_t k) const {
+  // Fibonacci hashing: cell keys of neighbouring cells differ in their low bits.
+  return std::size_t((k * 0x9E3779B97F4A7C15ull) >> 32) & (slot_key_.size() - 1);
 }
 
 std::int64_t SegmentGrid::cell(double v, int axis) const {
@@ -92,7 +123,10 @@ std::int64_t SegmentGrid::cell(double v, int axis) const {
 }
 
 std::size_t SegmentGrid::first(std::uint64_t k) const {
-  return std::size_t(std::lower_bound(keys_.begin(), keys_.end(), k) - keys_.begin());
+  for (std::size_t h = slot_of(k);; h = (h + 1) & (slot_key_.size() - 1)) {
+    if (slot_key_[h] == k) return slot_first_[h];
+    if (slot_key_[h] == kEmptySlot) return order_.size();
+  }
 }
 
 Vec3d edge_inward(const SurfaceMesh& m, const BorderEdge& e) {

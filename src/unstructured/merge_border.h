@@ -72,13 +72,19 @@ class SegmentGrid {
     return std::uint64_t(x) + std::uint64_t(dims_[0]) *
                                   (std::uint64_t(y) + std::uint64_t(dims_[1]) * std::uint64_t(z));
   }
+  // Index of the first entry of cell k, or order_.size() when the cell is empty.
   std::size_t first(std::uint64_t k) const;
+  std::size_t slot_of(std::uint64_t k) const;
 
   Vec3d lo_;
   double size_ = 1;
   std::int64_t dims_[3] = {0, 0, 0};
   std::vector<std::uint64_t> keys_;  // sorted
   std::vector<Index> order_;         // edge index per sorted key
+  // Occupied cells: key and first entry, open addressing (a power-of-two table).
+  static constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};
+  std::vector<std::uint64_t> slot_key_;
+  std::vector<std::size_t> slot_first_;
 };
 
 // Unit direction into the face across border edge e, perpendicular to the edge (zero when the

@@ -64,7 +64,8 @@ std::size_t drop_degenerate(Work& w, double length);
 // Turns patches wound against their neighbours (by shared-edge votes, largest patch first) and
 // then each connected part so that its enclosed volume is positive. Returns the patches whose
 // final winding is against their declared orientation (NURBS su x sv, negated for reversed).
-std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w);
+// `oriented` gets the adjacency of the oriented mesh.
+std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w, EdgeAdjacency& oriented);
 
 // Volume enclosed by the mesh with every boundary loop closed by a fan from its centroid, m^3.
 double enclosed_volume(const SurfaceMesh& mesh, const EdgeAdjacency& adj);

@@ -81,7 +81,8 @@ double enclosed_volume(const SurfaceMesh& m, const EdgeAdjacency& adj) {
   return volume6(m, adj, faces, loops, centre_of(m)) / 6;
 }
 
-std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w) {
+std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w,
+                                  EdgeAdjacency& oriented) {
   SurfaceMesh& m = w.mesh;
   const std::size_t np = patches.size();
   std::vector<std::uint8_t> turned(np, 0);  // against the declared winding
@@ -90,7 +91,7 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w) {
   }
 
   // The adjacency is built once: turning faces changes edge directions, not which faces meet.
-  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
   // Votes across patch borders: (P, Q) -> edges wound alike minus edges wound opposite.
   {
     struct Vote {
@@ -179,6 +180,12 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w) {
   for (std::size_t p = 0; p < np; ++p) {
     if (against[p] > 0) out.push_back(PatchId(p));
   }
+  // The faces turned since the adjacency was built (by their patch, then by their part, an odd
+  // number of times in all): it follows them instead of being built again.
+  std::vector<std::uint8_t> net(m.face_count());
+  for (std::size_t f = 0; f < net.size(); ++f) net[f] = turned[m.face_patch[f]] ^ face_turned[f];
+  reverse_in_adjacency(adj, m.faces, net);
+  oriented = std::move(adj);
   return out;
 }
 

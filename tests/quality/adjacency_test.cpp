@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "core/error.h"
 #include "mesh_builders.h"
 
@@ -51,6 +56,87 @@ TEST(Adjacency, OpenStripChainsIntoOneClosedLoop) {
   ASSERT_EQ(a.boundary_loops.size(), 1u);
   EXPECT_TRUE(a.boundary_loops[0].closed);
   EXPECT_EQ(a.boundary_loops[0].edges.size(), 10u);
+}
+
+// A triangulated 6 x 5 grid with a hole (one cell left out), a fin on an interior edge (three
+// faces there) and every seventh face wound against the rest: boundary loops, non-manifold and
+// inconsistent edges all occur.
+std::vector<Face> awkward_triangles(std::size_t& vertex_count) {
+  constexpr Index kNx = 6, kNy = 5;
+  std::vector<Face> faces;
+  for (Index j = 0; j + 1 < kNy; ++j) {
+    for (Index i = 0; i + 1 < kNx; ++i) {
+      if (i == 2 && j == 2) continue;
+      const Index a = j * kNx + i, b = a + 1, c = a + kNx + 1, d = a + kNx;
+      faces.push_back({a, b, c, kInvalid});
+      faces.push_back({a, c, d, kInvalid});
+    }
+  }
+  faces.push_back({kNx + 1, 2 * kNx + 2, kNx * kNy, kInvalid});  // the fin, on a diagonal
+  for (std::size_t f = 0; f < faces.size(); f += 7) std::swap(faces[f][1], faces[f][2]);
+  vertex_count = kNx * kNy + 1;
+  return faces;
+}
+
+void expect_same_adjacency(const EdgeAdjacency& a, const EdgeAdjacency& b) {
+  ASSERT_EQ(a.edges.size(), b.edges.size());
+  for (std::size_t e = 0; e < a.edges.size(); ++e) {
+    EXPECT_EQ(a.edges[e].v0, b.edges[e].v0);
+    EXPECT_EQ(a.edges[e].v1, b.edges[e].v1);
+    EXPECT_EQ(a.edges[e].first_slot, b.edges[e].first_slot) << "edge " << e;
+    EXPECT_EQ(a.edges[e].uses, b.edges[e].uses);
+    EXPECT_EQ(a.edges[e].same_direction, b.edges[e].same_direction) << "edge " << e;
+  }
+  EXPECT_EQ(a.slot_edge, b.slot_edge);
+  EXPECT_EQ(a.opposite_face, b.opposite_face);
+  EXPECT_EQ(a.opposite_corner, b.opposite_corner);
+  EXPECT_EQ(a.boundary_edges, b.boundary_edges);
+  EXPECT_EQ(a.nonmanifold_edges, b.nonmanifold_edges);
+  EXPECT_EQ(a.inconsistent_edges, b.inconsistent_edges);
+  ASSERT_EQ(a.boundary_loops.size(), b.boundary_loops.size());
+  for (std::size_t l = 0; l < a.boundary_loops.size(); ++l) {
+    EXPECT_EQ(a.boundary_loops[l].vertices, b.boundary_loops[l].vertices);
+    EXPECT_EQ(a.boundary_loops[l].edges, b.boundary_loops[l].edges);
+    EXPECT_EQ(a.boundary_loops[l].closed, b.boundary_loops[l].closed);
+  }
+}
+
+TEST(Adjacency, ReversingFacesInPlaceEqualsBuildingAgain) {
+  std::size_t nv = 0;
+  std::vector<Face> faces = awkward_triangles(nv);
+  EdgeAdjacency adj = build_edge_adjacency(faces, nv);
+  ASSERT_FALSE(adj.nonmanifold_edges.empty());
+  ASSERT_FALSE(adj.inconsistent_edges.empty());
+  ASSERT_GE(adj.boundary_loops.size(), 2u);
+  // Three rounds of pseudo-random subsets, each applied to the result of the last.
+  std::uint32_t state = 12345;
+  for (int round = 0; round < 3; ++round) {
+    std::vector<std::uint8_t> reversed(faces.size(), 0);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      state = state * 1664525u + 1013904223u;
+      reversed[f] = (state >> 28) < 6;  // about 3 in 8
+      if (reversed[f]) std::swap(faces[f][1], faces[f][2]);
+    }
+    reverse_in_adjacency(adj, faces, reversed);
+    SCOPED_TRACE("round " + std::to_string(round));
+    expect_same_adjacency(adj, build_edge_adjacency(faces, nv));
+  }
+  // Turning every face turns every loop: still the same as a fresh build.
+  std::vector<std::uint8_t> all(faces.size(), 1);
+  for (Face& f : faces) std::swap(f[1], f[2]);
+  reverse_in_adjacency(adj, faces, all);
+  expect_same_adjacency(adj, build_edge_adjacency(faces, nv));
+}
+
+TEST(Adjacency, BoundarySlotsAreThoseOfTheBoundaryEdges) {
+  std::size_t nv = 0;
+  const std::vector<Face> faces = awkward_triangles(nv);
+  const EdgeAdjacency adj = build_edge_adjacency(faces, nv);
+  const std::vector<Index> slots = boundary_slots(faces, nv);
+  ASSERT_EQ(slots.size(), adj.boundary_edges.size());
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    EXPECT_EQ(slots[i], adj.edges[adj.boundary_edges[i]].first_slot);
+  }
 }
 
 TEST(Adjacency, MissingVertexThrowsGeometryError) {
