@@ -98,11 +98,10 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b,
 }
 
 // The faces that may cover a candidate: of patches numbered below the candidate's whose
-// bounding box (grown by `margin`) holds it; with `close_only`, further only the faces whose
-// centroid lies within their longest edge plus `margin` of a candidate. Vertices are kept as
-// they are (unused ones are harmless).
+// bounding box (grown by `margin`) holds it, and whose centroid lies within their longest edge
+// plus `margin` of a candidate. Vertices are kept as they are (unused ones are harmless).
 SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
-                       std::size_t patch_count, double margin, bool close_only) {
+                       std::size_t patch_count, double margin) {
   std::vector<BBox3d> box(patch_count);
   for (std::size_t v = 0; v < m.vertex_count(); ++v) box[m.vertex_patch[v]].add(m.positions[v]);
   for (BBox3d& b : box) {
@@ -111,10 +110,8 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
     b.hi += Vec3d{margin, margin, margin};
   }
   std::vector<std::uint8_t> needed(patch_count, 0);
-  PatchId highest = 0;
   for (Index v : candidates) {
     const Vec3d& p = m.positions[v];
-    highest = std::max(highest, m.vertex_patch[v]);
     for (std::size_t q = 0; q < m.vertex_patch[v]; ++q) {
       const BBox3d& b = box[q];
       if (!needed[q] && p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y &&
@@ -125,7 +122,7 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
   }
   std::vector<std::uint8_t> keep(m.face_count(), 0);
   parallel_for(0, m.face_count(), [&](std::size_t f) { keep[f] = needed[m.face_patch[f]]; });
-  if (close_only) {
+  {
     // Candidates as zero-length segments in the segment grid: "near a point" is then a query.
     std::vector<BorderEdge> points(candidates.size());
     for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -160,6 +157,40 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
   sub.vertex_uv = m.vertex_uv;
   for (std::size_t f = 0; f < m.face_count(); ++f) {
     if (!keep[f]) continue;
+    sub.faces.push_back(m.faces[f]);
+    sub.face_patch.push_back(m.face_patch[f]);
+  }
+  return sub;
+}
+
+// The faces that may cover any vertex of a patch with a covered seed (the covered regions grow
+// over those patches only): of lower-numbered patches whose bounding box, grown by `margin`,
+// meets that patch's. Vertices are kept as they are.
+SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
+                        std::span<const PatchId> seed_cover, std::size_t patch_count,
+                        double margin) {
+  std::vector<BBox3d> box(patch_count);
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) box[m.vertex_patch[v]].add(m.positions[v]);
+  const auto meet = [&](const BBox3d& a, const BBox3d& b) {
+    return a.lo.x <= b.hi.x + margin && b.lo.x <= a.hi.x + margin && a.lo.y <= b.hi.y + margin &&
+           b.lo.y <= a.hi.y + margin && a.lo.z <= b.hi.z + margin && b.lo.z <= a.hi.z + margin;
+  };
+  std::vector<std::uint8_t> grows(patch_count, 0), needed(patch_count, 0);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (seed_cover[i] != kInvalid) grows[m.vertex_patch[candidates[i]]] = 1;
+  }
+  for (std::size_t p = 0; p < patch_count; ++p) {
+    if (!grows[p] || box[p].empty()) continue;
+    for (std::size_t q = 0; q < p; ++q) {
+      if (!needed[q] && !box[q].empty() && meet(box[q], box[p])) needed[q] = 1;
+    }
+  }
+  SurfaceMesh sub;
+  sub.positions = m.positions;
+  sub.vertex_patch = m.vertex_patch;
+  sub.vertex_uv = m.vertex_uv;
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    if (!needed[m.face_patch[f]]) continue;
     sub.faces.push_back(m.faces[f]);
     sub.face_patch.push_back(m.face_patch[f]);
   }
@@ -320,7 +351,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   // may cover a candidate built, for growing the covered regions and cutting them.
   std::vector<PatchId> seed_cover(candidates.size(), kInvalid);
   {
-    const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance, true);
+    const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance);
     if (near.faces.empty()) return stats;
     const HullQuery seed_query(patches, near);
     parallel_for(0, candidates.size(), [&](std::size_t i) {
@@ -331,7 +362,8 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   if (std::all_of(seed_cover.begin(), seed_cover.end(), [](PatchId p) { return p == kInvalid; })) {
     return stats;
   }
-  const HullQuery query(patches, faces_near(m, candidates, patches.size(), 20 * distance, false));
+  const HullQuery query(patches,
+                        faces_under(m, candidates, seed_cover, patches.size(), 20 * distance));
   stats.changed = true;  // from here on faces may go and corners move
 
   // A border vertex on a border it shares with a lower patch (the two continue each other:
@@ -368,12 +400,21 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
 
   // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
   // ring by ring: each ring is checked in parallel and committed in order).
-  std::vector<std::vector<Index>> ring(m.vertex_count());
+  // Neighbours by face edge, both ways (a border vertex's last neighbour follows it in no face),
+  // as one array per vertex range: count -> exclusive scan -> fill in face order.
+  std::vector<Index> ring_first(m.vertex_count() + 1, 0), ring;
   for (const Face& f : m.faces) {
-    for (int c = 0; c < 3; ++c) {
-      // Both ways: a border vertex's last neighbour follows it in no face.
-      ring[f[c]].push_back(f[(c + 1) % 3]);
-      ring[f[(c + 1) % 3]].push_back(f[c]);
+    for (int c = 0; c < 3; ++c) ring_first[f[c] + 1] += 2;
+  }
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) ring_first[v + 1] += ring_first[v];
+  ring.resize(ring_first.back());
+  {
+    std::vector<Index> next(ring_first.begin(), ring_first.end() - 1);
+    for (const Face& f : m.faces) {
+      for (int c = 0; c < 3; ++c) {
+        ring[next[f[c]]++] = f[(c + 1) % 3];
+        ring[next[f[(c + 1) % 3]]++] = f[c];
+      }
     }
   }
   std::vector<PatchId> cover(m.vertex_count(), kInvalid);
@@ -390,7 +431,8 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   while (!frontier.empty()) {
     std::vector<Index> next;
     for (Index v : frontier) {
-      for (Index u : ring[v]) {
+      for (Index k = ring_first[v]; k < ring_first[v + 1]; ++k) {
+        const Index u = ring[k];
         if (!checked[u]) {
           checked[u] = 1;
           next.push_back(u);
