@@ -246,22 +246,27 @@ TEST(Merge, OverlapsNarrowerThanAnEdgeAreCut) {
 }
 
 TEST(Merge, SameBytesWithOneTwoAndEightThreads) {
-  HullDefects d;
-  d.gap = 0.05;
-  const std::vector<Patch> patches = generated(HullKind::kRoundBilge, 24, d).patches;
-  const MergedSurface one = hm::test::with_threads(1, [&] { return merge_of(patches).merged; });
-  for (int threads : {2, 8}) {
-    const MergedSurface two =
-        hm::test::with_threads(threads, [&] { return merge_of(patches).merged; });
-    ASSERT_EQ(one.mesh.vertex_count(), two.mesh.vertex_count()) << threads;
-    ASSERT_EQ(one.mesh.faces, two.mesh.faces) << threads;
-    for (std::size_t v = 0; v < one.mesh.vertex_count(); ++v) {
-      ASSERT_EQ(one.mesh.positions[v].x, two.mesh.positions[v].x) << threads;
-      ASSERT_EQ(one.mesh.positions[v].y, two.mesh.positions[v].y) << threads;
-      ASSERT_EQ(one.mesh.positions[v].z, two.mesh.positions[v].z) << threads;
+  // Gaps (the snap) and overlaps (the cut, whose checks run in parallel).
+  HullDefects gaps, overlaps;
+  gaps.gap = 0.05;
+  overlaps.overlap = 0.05;
+  for (const HullDefects& d : {gaps, overlaps}) {
+    const std::vector<Patch> patches = generated(HullKind::kRoundBilge, 24, d).patches;
+    const MergedSurface one = hm::test::with_threads(1, [&] { return merge_of(patches).merged; });
+    for (int threads : {2, 8}) {
+      const MergedSurface two =
+          hm::test::with_threads(threads, [&] { return merge_of(patches).merged; });
+      ASSERT_EQ(one.mesh.vertex_count(), two.mesh.vertex_count()) << threads;
+      ASSERT_EQ(one.mesh.faces, two.mesh.faces) << threads;
+      for (std::size_t v = 0; v < one.mesh.vertex_count(); ++v) {
+        ASSERT_EQ(one.mesh.positions[v].x, two.mesh.positions[v].x) << threads;
+        ASSERT_EQ(one.mesh.positions[v].y, two.mesh.positions[v].y) << threads;
+        ASSERT_EQ(one.mesh.positions[v].z, two.mesh.positions[v].z) << threads;
+      }
+      EXPECT_EQ(one.vert_new2old, two.vert_new2old) << threads;
+      EXPECT_EQ(one.face_new2old, two.face_new2old) << threads;
+      EXPECT_EQ(one.report.overlap_triangles_removed, two.report.overlap_triangles_removed);
     }
-    EXPECT_EQ(one.vert_new2old, two.vert_new2old) << threads;
-    EXPECT_EQ(one.face_new2old, two.face_new2old) << threads;
   }
 }
 
