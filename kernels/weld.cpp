@@ -76,26 +76,24 @@ std::vector<ClosePair> find_close_pairs(std::span<const Vec3d> points,
     for (Index j : found) emit(j);
   };
 
-  // Count -> exclusive scan -> scatter: each point writes its own range. (Most points have no
-  // partner, so the small vector above rarely allocates.)
-  std::vector<std::size_t> offset(n + 1, 0);
-  parallel_for(
-      0, n,
-      [&](std::size_t i) {
-        std::size_t k = 0;
-        for_partners(i, [&](Index) { ++k; });
-        offset[i + 1] = k;
-      },
-      256);
-  for (std::size_t i = 0; i < n; ++i) offset[i + 1] += offset[i];
-  std::vector<ClosePair> pairs(offset[n]);
-  parallel_for(
-      0, n,
-      [&](std::size_t i) {
-        std::size_t k = offset[i];
-        for_partners(i, [&](Index j) { pairs[k++] = {Index(i), j, norm(points[j] - points[i])}; });
-      },
-      256);
+  // Evaluate in parallel, commit in a fixed order: blocks of kBlock points (a size that does not
+  // depend on the thread count) each fill their own list, joined in block order. The cell search
+  // runs once per point. (Most points have no partner, so the small vector above rarely
+  // allocates.)
+  constexpr std::size_t kBlock = 256;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::vector<ClosePair>> block_pairs(blocks);
+  parallel_for_each_item(blocks, [&](std::size_t b) {
+    std::vector<ClosePair>& out = block_pairs[b];
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      for_partners(i, [&](Index j) { out.push_back({Index(i), j, norm(points[j] - points[i])}); });
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& bp : block_pairs) total += bp.size();
+  std::vector<ClosePair> pairs;
+  pairs.reserve(total);
+  for (const auto& bp : block_pairs) pairs.insert(pairs.end(), bp.begin(), bp.end());
   return pairs;
 }
 
