@@ -140,7 +140,6 @@ void HullQuery::Impl::project_corners(const SurfaceMesh& mesh) {
 HullQuery::Impl::Impl(std::span<const Patch> in_patches, const SurfaceMesh& mesh)
     : patches(in_patches.begin(), in_patches.end()) {
   check_mesh(in_patches, mesh);
-  for (const Patch& p : patches) validate_surface(p.surface);
 
   for (const Vec3d& p : mesh.positions) box.add(p);
   centre = box.center();
@@ -185,9 +184,17 @@ HullQuery::Impl::Impl(std::span<const Patch> in_patches, const SurfaceMesh& mesh
     if (!is_triangle(face)) put(face[0], face[2], face[3]);
   }
 
+  // Only patches with triangles are ever refined on (every hit, section crossing and closest
+  // point starts on a triangle): a query over a few faces of a large hull, as the merge's overlap
+  // search builds, skips the others.
   domains.resize(patches.size());
-  parallel_for_each_item(patches.size(), [&](std::size_t p) {
-    domains[p] = query::make_domain(patches[p].surface, accept_tolerance());
+  std::vector<std::size_t> used;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    if (patch_first[p + 1] > patch_first[p]) used.push_back(p);
+  }
+  for (std::size_t p : used) validate_surface(patches[p].surface);
+  parallel_for_each_item(used.size(), [&](std::size_t i) {
+    domains[used[i]] = query::make_domain(patches[used[i]].surface, accept_tolerance());
   });
 
   tri_uv.resize(total);

@@ -50,11 +50,10 @@ PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const
 // Border vertices that may lie inside another patch: no other patch's border edge near them, or
 // the nearest such edge has them on its face's side (the vertex is past the border, on the
 // other patch). Vertices exactly on another border (a shared edge, a knuckle) are not seeds.
-std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b,
+std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b, const SegmentGrid& grid,
                                    const MergeOptions& options, double floor) {
   std::vector<double> tol(b.vertices.size());
   for (std::size_t i = 0; i < tol.size(); ++i) tol[i] = vertex_tolerance(options, b.edge_length[i]);
-  const SegmentGrid grid(m.positions, b.edges);
   std::vector<std::uint8_t> seed(b.vertices.size(), 0);
   parallel_for(0, b.vertices.size(), [&](std::size_t i) {
     const Index v = b.vertices[i];
@@ -344,7 +343,8 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   SurfaceMesh& m = w.mesh;
   const double distance = options.overlap_distance > 0 ? options.overlap_distance : 1e-4 * length;
   // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
-  const std::vector<Index> candidates = seed_candidates(m, b, options, distance);
+  const SegmentGrid border_grid(m.positions, b.edges);
+  const std::vector<Index> candidates = seed_candidates(m, b, border_grid, options, distance);
   if (candidates.empty()) return stats;
   // The seeds need only the faces around them; building a BVH over the whole hull would cost
   // more than the merge itself. Only when a seed is covered is a query over every patch that
@@ -369,34 +369,29 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   // A border vertex on a border it shares with a lower patch (the two continue each other:
   // inward directions opposite) lies on that patch without overlapping it: no cut starts there
   // unless faces around it are covered. Along the hull's outline, where both patches end side by
-  // side, a cut does start.
-  const SegmentGrid border_grid(m.positions, b.edges);
-  std::vector<std::uint8_t> shared(m.vertex_count(), 0);
-  {
-    std::vector<Vec3d> edge_in(b.edges.size());
-    std::vector<Vec3d> vertex_in(m.vertex_count(), Vec3d{});
-    for (std::size_t e = 0; e < b.edges.size(); ++e) {
-      edge_in[e] = edge_inward(m, b.edges[e]);
-      vertex_in[b.edges[e].v0] += edge_in[e];
-      vertex_in[b.edges[e].v1] += edge_in[e];
-    }
-    parallel_for(0, b.vertices.size(), [&](std::size_t i) {
-      const Index v = b.vertices[i];
-      const Vec3d& x = m.positions[v];
-      double best = 3 * distance;
-      Index best_edge = kInvalid;
-      border_grid.for_each_near(x, best, [&](Index e) {
-        const BorderEdge& be = b.edges[e];
-        if (be.patch >= m.vertex_patch[v]) return;
-        const double d = closest_on_segment(x, m.positions[be.v0], m.positions[be.v1]).distance;
-        if (d < best || (d == best && e < best_edge)) {
-          best = d;
-          best_edge = e;
-        }
-      });
-      if (best_edge != kInvalid && dot(edge_in[best_edge], vertex_in[v]) < 0) shared[v] = 1;
-    });
+  // side, a cut does start. Asked only of the few covered border vertices without a covered face.
+  std::vector<Vec3d> edge_in(b.edges.size());
+  std::vector<Vec3d> vertex_in(m.vertex_count(), Vec3d{});
+  for (std::size_t e = 0; e < b.edges.size(); ++e) {
+    edge_in[e] = edge_inward(m, b.edges[e]);
+    vertex_in[b.edges[e].v0] += edge_in[e];
+    vertex_in[b.edges[e].v1] += edge_in[e];
   }
+  const auto on_shared_border = [&](Index v) {
+    const Vec3d& x = m.positions[v];
+    double best = 3 * distance;
+    Index best_edge = kInvalid;
+    border_grid.for_each_near(x, best, [&](Index e) {
+      const BorderEdge& be = b.edges[e];
+      if (be.patch >= m.vertex_patch[v]) return;
+      const double d = closest_on_segment(x, m.positions[be.v0], m.positions[be.v1]).distance;
+      if (d < best || (d == best && e < best_edge)) {
+        best = d;
+        best_edge = e;
+      }
+    });
+    return best_edge != kInvalid && dot(edge_in[best_edge], vertex_in[v]) < 0;
+  };
 
   // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
   // ring by ring: each ring is checked in parallel and committed in order).
@@ -491,7 +486,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
     }
     for (std::size_t v = 0; v < cover.size(); ++v) {
       if (in_removed[v] || cover[v] == kInvalid) continue;
-      if (border_next[v].empty() || shared[v]) {
+      if (border_next[v].empty() || on_shared_border(Index(v))) {
         cover[v] = kInvalid;
       } else {
         strip_only[v] = 1;
