@@ -347,8 +347,9 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   const std::vector<Index> candidates = seed_candidates(m, b, border_grid, options, distance);
   if (candidates.empty()) return stats;
   // The seeds need only the faces around them; building a BVH over the whole hull would cost
-  // more than the merge itself. Only when a seed is covered is a query over every patch that
-  // may cover a candidate built, for growing the covered regions and cutting them.
+  // more than the merge itself. Only when a seed is covered is a query built over the patches
+  // that may lie under a patch with a covered seed, for growing the covered regions and cutting
+  // them.
   std::vector<PatchId> seed_cover(candidates.size(), kInvalid);
   {
     const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance);
