@@ -129,6 +129,21 @@ std::size_t SegmentGrid::first(std::uint64_t k) const {
   }
 }
 
+std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
+                                 std::span<const Index> local) {
+  std::vector<Vec3d> in(b.vertices.size(), Vec3d{});
+  for (const BorderEdge& e : b.edges) {
+    const Vec3d d = edge_inward(m, e);
+    in[local[e.v0]] += d;
+    in[local[e.v1]] += d;
+  }
+  for (Vec3d& d : in) {
+    const double n = norm(d);
+    d = n > 0 ? d / n : Vec3d{};
+  }
+  return in;
+}
+
 Vec3d edge_inward(const SurfaceMesh& m, const BorderEdge& e) {
   const Face& f = m.faces[e.face];
   Index apex = f[0];

@@ -91,6 +91,11 @@ class SegmentGrid {
 // face is degenerate).
 Vec3d edge_inward(const SurfaceMesh& m, const BorderEdge& e);
 
+// Per border vertex (b.vertices order): the mean inward direction of its border edges (unit, or
+// zero). local maps a mesh vertex to its border index.
+std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
+                                 std::span<const Index> local);
+
 // Closest point of segment [a, b] to p: parameter t in [0, 1] from a, and the distance.
 struct SegmentPoint {
   double t = 0;

@@ -77,17 +77,9 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b, const 
     }
     if (best <= floor) return;
     const BorderEdge& be = b.edges[best_edge];
-    const Face& f = m.faces[be.face];
-    Index apex = f[0];
-    for (int c = 0; c < 3; ++c) {
-      if (f[c] != be.v0 && f[c] != be.v1) apex = f[c];
-    }
-    const Vec3d a = m.positions[be.v0], d = m.positions[be.v1] - a;
-    const Vec3d on = a + best_sp.t * d;
-    Vec3d inward = m.positions[apex] - a;
-    const double dd = dot(d, d);
-    if (dd > 0) inward -= (dot(inward, d) / dd) * d;
-    if (dot(p - on, inward) > 0) seed[i] = 1;
+    const Vec3d a = m.positions[be.v0];
+    const Vec3d on = a + best_sp.t * (m.positions[be.v1] - a);
+    if (dot(p - on, edge_inward(m, be)) > 0) seed[i] = 1;
   });
   std::vector<Index> out;
   for (std::size_t i = 0; i < seed.size(); ++i) {
@@ -96,11 +88,8 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b, const 
   return out;
 }
 
-// The faces that may cover a candidate: of patches numbered below the candidate's whose
-// bounding box (grown by `margin`) holds it, and whose centroid lies within their longest edge
-// plus `margin` of a candidate. Vertices are kept as they are (unused ones are harmless).
-SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
-                       std::size_t patch_count, double margin) {
+// Bounding box of each patch's vertices, grown by `margin` (empty patches stay empty).
+std::vector<BBox3d> patch_boxes(const SurfaceMesh& m, std::size_t patch_count, double margin) {
   std::vector<BBox3d> box(patch_count);
   for (std::size_t v = 0; v < m.vertex_count(); ++v) box[m.vertex_patch[v]].add(m.positions[v]);
   for (BBox3d& b : box) {
@@ -108,6 +97,29 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
     b.lo -= Vec3d{margin, margin, margin};
     b.hi += Vec3d{margin, margin, margin};
   }
+  return box;
+}
+
+// The faces with keep[f] set, over all of m's vertices (unused ones are harmless).
+SurfaceMesh faces_kept(const SurfaceMesh& m, std::span<const std::uint8_t> keep) {
+  SurfaceMesh sub;
+  sub.positions = m.positions;
+  sub.vertex_patch = m.vertex_patch;
+  sub.vertex_uv = m.vertex_uv;
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    if (!keep[f]) continue;
+    sub.faces.push_back(m.faces[f]);
+    sub.face_patch.push_back(m.face_patch[f]);
+  }
+  return sub;
+}
+
+// The faces that may cover a candidate: of patches numbered below the candidate's whose
+// bounding box (grown by `margin`) holds it, and whose centroid lies within their longest edge
+// plus `margin` of a candidate.
+SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
+                       std::size_t patch_count, double margin) {
+  const std::vector<BBox3d> box = patch_boxes(m, patch_count, margin);
   std::vector<std::uint8_t> needed(patch_count, 0);
   for (Index v : candidates) {
     const Vec3d& p = m.positions[v];
@@ -150,16 +162,7 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
       keep[f] = close;
     });
   }
-  SurfaceMesh sub;
-  sub.positions = m.positions;
-  sub.vertex_patch = m.vertex_patch;
-  sub.vertex_uv = m.vertex_uv;
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
-    if (!keep[f]) continue;
-    sub.faces.push_back(m.faces[f]);
-    sub.face_patch.push_back(m.face_patch[f]);
-  }
-  return sub;
+  return faces_kept(m, keep);
 }
 
 // The faces that may cover any vertex of a patch with a covered seed (the covered regions grow
@@ -168,8 +171,7 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
 SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
                         std::span<const PatchId> seed_cover, std::size_t patch_count,
                         double margin) {
-  std::vector<BBox3d> box(patch_count);
-  for (std::size_t v = 0; v < m.vertex_count(); ++v) box[m.vertex_patch[v]].add(m.positions[v]);
+  const std::vector<BBox3d> box = patch_boxes(m, patch_count, 0);
   const auto meet = [&](const BBox3d& a, const BBox3d& b) {
     return a.lo.x <= b.hi.x + margin && b.lo.x <= a.hi.x + margin && a.lo.y <= b.hi.y + margin &&
            b.lo.y <= a.hi.y + margin && a.lo.z <= b.hi.z + margin && b.lo.z <= a.hi.z + margin;
@@ -184,16 +186,9 @@ SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
       if (!needed[q] && !box[q].empty() && meet(box[q], box[p])) needed[q] = 1;
     }
   }
-  SurfaceMesh sub;
-  sub.positions = m.positions;
-  sub.vertex_patch = m.vertex_patch;
-  sub.vertex_uv = m.vertex_uv;
-  for (std::size_t f = 0; f < m.face_count(); ++f) {
-    if (!needed[m.face_patch[f]]) continue;
-    sub.faces.push_back(m.faces[f]);
-    sub.face_patch.push_back(m.face_patch[f]);
-  }
-  return sub;
+  std::vector<std::uint8_t> keep(m.face_count());
+  for (std::size_t f = 0; f < m.face_count(); ++f) keep[f] = needed[m.face_patch[f]];
+  return faces_kept(m, keep);
 }
 
 // The nearest point within `reach` of covered vertex v (patch p) on the border of the region the
@@ -371,13 +366,9 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   // inward directions opposite) lies on that patch without overlapping it: no cut starts there
   // unless faces around it are covered. Along the hull's outline, where both patches end side by
   // side, a cut does start. Asked only of the few covered border vertices without a covered face.
-  std::vector<Vec3d> edge_in(b.edges.size());
-  std::vector<Vec3d> vertex_in(m.vertex_count(), Vec3d{});
-  for (std::size_t e = 0; e < b.edges.size(); ++e) {
-    edge_in[e] = edge_inward(m, b.edges[e]);
-    vertex_in[b.edges[e].v0] += edge_in[e];
-    vertex_in[b.edges[e].v1] += edge_in[e];
-  }
+  std::vector<Index> local(m.vertex_count(), kInvalid);  // mesh vertex -> border index
+  for (std::size_t i = 0; i < b.vertices.size(); ++i) local[b.vertices[i]] = Index(i);
+  const std::vector<Vec3d> inward = vertex_inward(m, b, local);
   const auto on_shared_border = [&](Index v) {
     const Vec3d& x = m.positions[v];
     double best = 3 * distance;
@@ -391,7 +382,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
         best_edge = e;
       }
     });
-    return best_edge != kInvalid && dot(edge_in[best_edge], vertex_in[v]) < 0;
+    return best_edge != kInvalid && dot(edge_inward(m, b.edges[best_edge]), inward[local[v]]) < 0;
   };
 
   // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
@@ -528,18 +519,21 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
     }
     std::sort(moved.begin(), moved.end());
     moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    const auto slot = [&](Index v) {
+      return std::size_t(std::lower_bound(moved.begin(), moved.end(), v) - moved.begin());
+    };
     // Each moved corner goes to where its edges towards uncovered corners leave the covered
     // region (bisection on the exact surfaces of the patches below), the nearest such point:
     // that is the cut along the covering patches' border.
     // A corner on the patch's border (the hull's outline, say) leaves along that border, so
-    // that the outline keeps its place.
-    std::vector<std::vector<Index>> out_to(moved.size());
+    // that the outline keeps its place. star: the faces that stay around each moved corner.
+    std::vector<std::vector<Index>> out_to(moved.size()), star(moved.size());
     for (Index f : straddling) {
       const Face& t = m.faces[f];
       for (int c = 0; c < 3; ++c) {
         if (cover[t[c]] == kInvalid) continue;
-        const std::size_t i =
-            std::size_t(std::lower_bound(moved.begin(), moved.end(), t[c]) - moved.begin());
+        const std::size_t i = slot(t[c]);
+        star[i].push_back(f);
         for (int d = 1; d < 3; ++d) {
           const Index u = t[(c + d) % 3];
           if (cover[u] == kInvalid) out_to[i].push_back(u);
@@ -563,16 +557,6 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
       const ClosestPoint cp = query.closest_point_in_range(x, 0, PatchId(p), 20 * distance);
       return cp.valid() && cp.distance <= 3 * distance;
     };
-    // The faces that stay around each moved corner.
-    std::vector<std::vector<Index>> star(moved.size());
-    for (Index f : straddling) {
-      for (int c = 0; c < 3; ++c) {
-        const Index v = m.faces[f][c];
-        if (cover[v] == kInvalid) continue;
-        star[std::size_t(std::lower_bound(moved.begin(), moved.end(), v) - moved.begin())]
-            .push_back(f);
-      }
-    }
     std::vector<Vec3d> along_edge(moved.size()), onto_border(moved.size());
     std::vector<Index> onto_vertex(moved.size(), kInvalid);
     parallel_for(0, moved.size(), [&](std::size_t i) {
@@ -614,9 +598,6 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
     // narrower than an edge and no edge leaves the patches below near it. A face it would turn
     // over takes the exits along its edges instead.
     std::vector<Vec3d> target = onto_border;
-    const auto slot = [&](Index v) {
-      return std::size_t(std::lower_bound(moved.begin(), moved.end(), v) - moved.begin());
-    };
     for (Index f : straddling) {
       const Face& t = m.faces[f];
       std::array<Vec3d, 3> x;

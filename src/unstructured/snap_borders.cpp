@@ -47,22 +47,6 @@ constexpr double kWidthShare = 0.5;
 constexpr double kBetweenShare = 0.5;
 constexpr double kIntoCos = 0.5;
 
-// Per border vertex: the mean inward direction of its border edges (unit, or zero).
-std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
-                                 std::span<const Index> local) {
-  std::vector<Vec3d> in(b.vertices.size(), Vec3d{});
-  for (const BorderEdge& e : b.edges) {
-    const Vec3d d = edge_inward(m, e);
-    in[local[e.v0]] += d;
-    in[local[e.v1]] += d;
-  }
-  for (Vec3d& d : in) {
-    const double n = norm(d);
-    d = n > 0 ? d / n : Vec3d{};
-  }
-  return in;
-}
-
 // Per border vertex, in one pass over the border edges near it:
 //   - how wide its own patch is there: the distance to the nearest border edge of the same patch
 //     that faces it from across the patch (inward directions more than 120 degrees apart, not an
