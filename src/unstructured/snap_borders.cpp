@@ -25,6 +25,8 @@ constexpr double kEndFraction = 0.3;
 // A vertex whose nearest point on an edge is this close to an end (as a fraction of the edge)
 // lies beyond that end.
 constexpr double kBeyondEnd = 1e-3;
+// ... and so does one whose nearest point is nearer an end than this share of its distance.
+constexpr double kFacesEndShare = 0.25;
 
 struct Split {
   Index edge = kInvalid;  // border edge index
@@ -221,8 +223,12 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     if (in_cluster(i, e.patch)) continue;
     // Nearest at an end of the edge, or all but at it: the vertex lies beyond the edge, not on
     // it. It joins that end or nothing; a split there would give a face with three corners all
-    // but in line.
-    if (std::min(s.t, 1 - s.t) <= kBeyondEnd) continue;
+    // but in line. So does a vertex whose nearest point lies much nearer that end than the
+    // vertex lies to the edge: it faces the end (a border running off at an angle from it), and
+    // a split would stitch its own border onto the edge across that angle.
+    const double from_end = std::min(s.t, 1 - s.t);
+    const double edge_len = norm(m.positions[e.v1] - m.positions[e.v0]);
+    if (from_end <= kBeyondEnd || from_end * edge_len < kFacesEndShare * s.distance) continue;
     const Index r = rep[i];
     if (rep[local[e.v0]] == r || rep[local[e.v1]] == r) continue;
     // The split gives the edges from the vertex to both ends one more face. Where the welds have
