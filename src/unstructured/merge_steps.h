@@ -33,8 +33,9 @@ struct OverlapStats {
 };
 // Finds border vertices of one patch that lie inside another patch's surface (closest point
 // within a few chord errors, normals compatible, away from that patch's border), grows the
-// covered region over the patch, removes it and moves the straddling corners onto the covering
-// patch's border. Of two patches covering each other, the higher-numbered one is cut. border is
+// covered region over the patch, and cuts the patch's faces along the border of the patches
+// below it, keeping the part outside them (new vertices where edges leave them; no vertex
+// moves). Of two patches covering each other, the higher-numbered one is cut. border is
 // collect_border of the mesh as it comes in.
 OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& border,
                              const MergeOptions& options, double length, Progress& progress);

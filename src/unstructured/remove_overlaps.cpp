@@ -3,16 +3,16 @@
 // snap_borders can stitch them there.
 //
 // collect seeds (border vertices lying on a lower-numbered patch, checked on the NURBS through
-// the Embree closest-point query) -> grow the covered region over each patch -> apply: drop
-// covered faces, and move each covered corner of a straddling face onto the border of the
-// patches below (the nearest point of their border edges inside its faces, else where its edges
-// leave them, by bisection on their exact surfaces). An overlap narrower than an edge covers no
-// face; its border vertices are cut the same way, so that the two borders meet for the snap.
+// the Embree closest-point query) -> grow the covered region over each patch -> split the edges
+// that leave the patches below between two covered corners -> cut every face along the border
+// of the patches below (marching triangles: each edge from a covered corner to an uncovered one
+// is cut where it leaves them, found by bisection on their exact surfaces) and keep the part
+// outside. An overlap narrower than an edge covers only border vertices; their edges are cut
+// the same way. Corners never move.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "core/bbox.h"
 #include "core/parallel.h"
@@ -27,9 +27,46 @@ namespace {
 // Normals of coincident layers agree to this (either orientation: patches may arrive flipped).
 constexpr double kMinNormalCos = 0.866;  // 30 degrees
 
-// A patch's border lying on a lower patch across less than this share of its border edges is
-// left to the snap, as a gap would be.
-constexpr double kNarrowShare = 0.25;
+// A cut this close to a corner, as a share of its edge, is no cut: the corner lies on the
+// border of the patches below (the snap closes the rest, as it closes a gap), and a cut there
+// would leave a sliver.
+constexpr double kOnBorder = 0.15;
+
+// A point of an edge is on the patches below when it lies past none of their borders by more
+// than this share of the overlap distance.
+constexpr double kPastBorder = 0.1;
+
+// A corner against the region the patches below its own cover.
+enum class Side : std::int8_t { kIn, kOn, kOut };
+
+// An edge from a covered corner to an uncovered one, and where it leaves the patches below: the
+// covered share of the edge, from `in`.
+struct EdgeCut {
+  Index in = kInvalid, out = kInvalid;
+  double t = 0;
+};
+bool edge_cut_less(const EdgeCut& a, const EdgeCut& b) {
+  return a.in != b.in ? a.in < b.in : a.out < b.out;
+}
+
+// The closest point of x within `limit` on the patches first <= q < last whose normal agrees
+// with n (either way), or an invalid point. At a knuckle the nearest of them may be the patch
+// across it, as near as the one x lies on: that one is searched around, twice at most.
+ClosestPoint closest_alike(const HullQuery& q, const Vec3d& x, const Vec3d& n, PatchId first,
+                           PatchId last, double limit, int depth = 2) {
+  if (first >= last) return {};
+  // The triangles stray from the surface by up to the chord tolerance: search them wider than
+  // the distance asked of the exact surfaces.
+  const ClosestPoint cp = q.closest_point_in_range(x, first, last, 20 * limit);
+  if (!cp.valid() || !(cp.distance <= limit)) return {};
+  if (std::abs(dot(n, cp.normal)) >= kMinNormalCos) return cp;
+  if (depth == 0) return {};
+  const ClosestPoint below = closest_alike(q, x, n, first, cp.patch, limit, depth - 1);
+  const ClosestPoint above = closest_alike(q, x, n, cp.patch + 1, last, limit, depth - 1);
+  if (!below.valid()) return above;
+  if (!above.valid()) return below;
+  return above.distance < below.distance ? above : below;
+}
 
 // The lowest-numbered patch below the vertex's own whose surface the vertex lies on, or
 // kInvalid.
@@ -37,14 +74,9 @@ PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const
                        Index v, double distance) {
   const PatchId own = m.vertex_patch[v];
   if (own == 0) return kInvalid;
-  // The triangles stray from the surface by up to the chord tolerance: search them wider than
-  // the distance asked of the exact surfaces.
-  const ClosestPoint cp = q.closest_point_in_range(m.positions[v], 0, own, 20 * distance);
-  if (!cp.valid() || !(cp.distance <= distance)) return kInvalid;
   const Vec2d uv = m.vertex_uv[v];
   const Vec3d n = normal(patches[own].surface, uv.x, uv.y);
-  if (std::abs(dot(n, cp.normal)) < kMinNormalCos) return kInvalid;
-  return cp.patch;
+  return closest_alike(q, m.positions[v], n, 0, own, distance).patch;
 }
 
 // Border vertices that may lie inside another patch: no other patch's border edge near them, or
@@ -191,202 +223,92 @@ SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
   return faces_kept(m, keep);
 }
 
-// The nearest point within `reach` of covered vertex v (patch p) on the border of the region the
-// patches below p cover: on a lower patch's border edge, and on no other lower patch. Empty when
-// there is none.
-std::optional<Vec3d> nearest_exit(const SurfaceMesh& m, const Border& b, const SegmentGrid& grid,
-                                  const HullQuery& query, Index v, PatchId p,
-                                  std::span<const Index> star, double reach, double distance) {
-  const Vec3d& x = m.positions[v];
-  // q lies on a chord of a border, which strays from the surface by up to the tessellation
-  // tolerance (as on_lower allows).
-  const auto covered_by = [&](const Vec3d& q, PatchId first, PatchId last) {
-    if (first >= last) return false;
-    const ClosestPoint cp = query.closest_point_in_range(q, first, last, 20 * distance);
-    return cp.valid() && cp.distance <= 3 * distance;
-  };
-  std::optional<Vec3d> best;
-  double best_d = reach;
-  Index best_edge = kInvalid;
-  grid.for_each_near(x, reach, [&](Index e) {
-    const BorderEdge& be = b.edges[e];
-    if (be.patch >= p) return;
-    const SegmentPoint sp = closest_on_segment(x, m.positions[be.v0], m.positions[be.v1]);
-    if (sp.distance > best_d || (sp.distance == best_d && e > best_edge)) return;
-    const Vec3d q = m.positions[be.v0] + sp.t * (m.positions[be.v1] - m.positions[be.v0]);
-    if (covered_by(q, 0, be.patch) || covered_by(q, be.patch + 1, p)) return;
-    // A lower border that runs along p's own border (the hull's outline, where both patches
-    // end) is no cut: the region ends there for p as well.
-    const Vec3d d = normalized(m.positions[be.v1] - m.positions[be.v0]);
-    bool alongside = false;
-    grid.for_each_near(q, 3 * distance, [&](Index o) {
-      const BorderEdge& ob = b.edges[o];
-      if (alongside || ob.patch != p) return;
-      const Vec3d a = m.positions[ob.v0], c = m.positions[ob.v1];
-      if (closest_on_segment(q, a, c).distance > 3 * distance) return;
-      alongside = std::abs(dot(normalized(c - a), d)) > 0.9;
-    });
-    if (alongside) return;
-    // The cut must run through what is left of p around v: q within one of v's faces.
-    bool inside = false;
-    for (Index f : star) {
-      const Face& t = m.faces[f];
-      const Vec3d a = m.positions[t[0]], e1 = m.positions[t[1]] - a, e2 = m.positions[t[2]] - a;
-      const Vec3d n = cross(e1, e2);
-      const double nn = dot(n, n);
-      if (!(nn > 0)) continue;
-      const Vec3d r = q - a;
-      const double l1 = dot(cross(r, e2), n) / nn, l2 = dot(cross(e1, r), n) / nn;
-      const double off = std::abs(dot(r, n)) / std::sqrt(nn);
-      constexpr double kSlack = 1e-6;
-      if (l1 >= -kSlack && l2 >= -kSlack && l1 + l2 <= 1 + kSlack && off <= 3 * distance) {
-        inside = true;
-        break;
-      }
-    }
-    if (!inside) return;
-    best_d = sp.distance;
-    best_edge = e;
-    best = q;
-  });
-  return best;
-}
-
-// Collapses each moved[i] into onto_vertex[i] (where valid) among the kept faces of one patch:
-// the faces on their edge go, the others take the neighbour. Skipped where the two have a common
-// neighbour off that edge (the collapse would pinch the patch).
-void collapse_onto_neighbours(SurfaceMesh& m, std::span<const Index> patch_faces,
-                              std::span<const Index> moved, std::span<const Index> onto_vertex,
-                              std::vector<std::uint8_t>& keep, OverlapStats& stats) {
-  if (std::all_of(onto_vertex.begin(), onto_vertex.end(), [](Index u) { return u == kInvalid; })) {
-    return;
-  }
-  std::vector<std::pair<Index, Index>> vertex_face;  // (vertex, face) of kept faces, sorted
-  for (Index f : patch_faces) {
-    if (!keep[f]) continue;
-    for (int c = 0; c < 3; ++c) vertex_face.push_back({m.faces[f][c], f});
-  }
-  std::sort(vertex_face.begin(), vertex_face.end());
-  const auto faces_at = [&](Index v) {
-    const auto lo =
-        std::lower_bound(vertex_face.begin(), vertex_face.end(), std::pair{v, Index(0)});
-    auto hi = lo;
-    while (hi != vertex_face.end() && hi->first == v) ++hi;
-    return std::span<const std::pair<Index, Index>>(vertex_face.data() + (lo - vertex_face.begin()),
-                                                    std::size_t(hi - lo));
-  };
-  const auto neighbours = [&](Index v) {
-    std::vector<Index> n;
-    for (const auto& [_, f] : faces_at(v)) {
-      for (int c = 0; c < 3; ++c) {
-        if (m.faces[f][c] != v) n.push_back(m.faces[f][c]);
-      }
-    }
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-    return n;
-  };
-  // The face lists are of the patch before any collapse: a collapse next to an earlier one
-  // waits (the vertex stays where it is).
-  std::vector<Index> touched;
-  const auto untouched = [&](Index v) {
-    for (const auto& [_, f] : faces_at(v)) {
-      if (std::binary_search(touched.begin(), touched.end(), f)) return false;
-    }
-    return true;
-  };
-  for (std::size_t i = 0; i < moved.size(); ++i) {
-    const Index v = moved[i], u = onto_vertex[i];
-    if (u == kInvalid || !untouched(v) || !untouched(u)) continue;
-    const std::vector<Index> nv = neighbours(v), nu = neighbours(u);
-    std::vector<Index> common;
-    std::set_intersection(nv.begin(), nv.end(), nu.begin(), nu.end(), std::back_inserter(common));
-    std::vector<Index> on_edge, apexes;
-    for (const auto& [_, f] : faces_at(v)) {
-      const Face& t = m.faces[f];
-      if (!keep[f] || (t[0] != u && t[1] != u && t[2] != u)) continue;
-      on_edge.push_back(f);
-      for (int c = 0; c < 3; ++c) {
-        if (t[c] != u && t[c] != v) apexes.push_back(t[c]);
-      }
-    }
-    std::sort(apexes.begin(), apexes.end());
-    if (on_edge.empty() || apexes != common) continue;
-    for (const auto& [_, f] : faces_at(v)) touched.push_back(f);
-    for (const auto& [_, f] : faces_at(u)) touched.push_back(f);
-    std::sort(touched.begin(), touched.end());
-    for (const auto& [_, f] : faces_at(v)) {
-      if (!keep[f]) continue;
-      if (std::find(on_edge.begin(), on_edge.end(), f) != on_edge.end()) {
-        keep[f] = 0;
-        ++stats.triangles;
-        stats.area += face_area(m.positions, m.faces[f]);
-        continue;
-      }
-      for (int c = 0; c < 3; ++c) {
-        if (m.faces[f][c] == v) m.faces[f][c] = u;
-      }
-    }
-  }
-}
-
-}  // namespace
-
-OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& b,
-                             const MergeOptions& options, double length, Progress& progress) {
-  OverlapStats stats;
+// Splits every edge between corners covered by different lower patches at the first of its
+// points at 1/2, 1/4 and 3/4 that is on none of them (on_lower(x, patch) false), and the faces
+// on it (one, two or three split edges: two, three or four triangles). The new vertices are
+// uncovered; faces keep their provenance.
+template <class OnLower>
+void split_edges_off(Work& w, std::vector<PatchId>& cover, const OnLower& on_lower) {
   SurfaceMesh& m = w.mesh;
-  const double distance = options.overlap_distance > 0 ? options.overlap_distance : 1e-4 * length;
-  // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
-  const SegmentGrid border_grid(m.positions, b.edges);
-  const std::vector<Index> candidates = seed_candidates(m, b, border_grid, options, distance);
-  if (candidates.empty()) return stats;
-  // The seeds need only the faces around them; building a BVH over the whole hull would cost
-  // more than the merge itself. Only when a seed is covered is a query built over the patches
-  // that may lie under a patch with a covered seed, for growing the covered regions and cutting
-  // them.
-  std::vector<PatchId> seed_cover(candidates.size(), kInvalid);
-  {
-    const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance);
-    if (near.faces.empty()) return stats;
-    const HullQuery seed_query(patches, near);
-    parallel_for(0, candidates.size(), [&](std::size_t i) {
-      seed_cover[i] = covering_patch(seed_query, patches, m, candidates[i], distance);
-    });
+  std::vector<std::pair<Index, Index>> edges;  // (lower, higher) vertex
+  for (const Face& t : m.faces) {
+    for (int c = 0; c < 3; ++c) {
+      const Index a = t[c], e = t[(c + 1) % 3];
+      if (cover[a] == kInvalid || cover[e] == kInvalid || cover[a] == cover[e]) continue;
+      edges.push_back({std::min(a, e), std::max(a, e)});
+    }
   }
-  if (progress.cancelled()) return stats;
-  if (std::all_of(seed_cover.begin(), seed_cover.end(), [](PatchId p) { return p == kInvalid; })) {
-    return stats;
-  }
-  const HullQuery query(patches,
-                        faces_under(m, candidates, seed_cover, patches.size(), 20 * distance));
-  stats.changed = true;  // from here on faces may go and corners move
-
-  // A border vertex on a border it shares with a lower patch (the two continue each other:
-  // inward directions opposite) lies on that patch without overlapping it: no cut starts there
-  // unless faces around it are covered. Along the hull's outline, where both patches end side by
-  // side, a cut does start. Asked only of the few covered border vertices without a covered face.
-  std::vector<Index> local(m.vertex_count(), kInvalid);  // mesh vertex -> border index
-  for (std::size_t i = 0; i < b.vertices.size(); ++i) local[b.vertices[i]] = Index(i);
-  const std::vector<Vec3d> inward = vertex_inward(m, b, local);
-  const auto on_shared_border = [&](Index v) {
-    const Vec3d& x = m.positions[v];
-    double best = 3 * distance;
-    Index best_edge = kInvalid;
-    border_grid.for_each_near(x, best, [&](Index e) {
-      const BorderEdge& be = b.edges[e];
-      if (be.patch >= m.vertex_patch[v]) return;
-      const double d = closest_on_segment(x, m.positions[be.v0], m.positions[be.v1]).distance;
-      if (d < best || (d == best && e < best_edge)) {
-        best = d;
-        best_edge = e;
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  if (edges.empty()) return;
+  std::vector<double> at(edges.size(), -1);  // where the edge is split, or -1
+  parallel_for(0, edges.size(), [&](std::size_t i) {
+    const Vec3d a = m.positions[edges[i].first], e = m.positions[edges[i].second];
+    for (double t : {0.5, 0.25, 0.75}) {
+      if (!on_lower(a + t * (e - a), m.vertex_patch[edges[i].first])) {
+        at[i] = t;
+        return;
       }
-    });
-    return best_edge != kInvalid && dot(edge_inward(m, b.edges[best_edge]), inward[local[v]]) < 0;
+    }
+  });
+  std::vector<Index> mid(edges.size(), kInvalid);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (at[i] < 0) continue;
+    const auto [a, e] = edges[i];
+    const double t = at[i];
+    mid[i] = Index(m.vertex_count());
+    m.positions.push_back(m.positions[a] + t * (m.positions[e] - m.positions[a]));
+    m.vertex_patch.push_back(m.vertex_patch[a]);
+    m.vertex_uv.push_back(m.vertex_uv[a] + t * (m.vertex_uv[e] - m.vertex_uv[a]));
+    w.vert_old.push_back(w.vert_old[t <= 0.5 ? a : e]);
+    cover.push_back(kInvalid);
+  }
+  const auto mid_of = [&](Index a, Index e) {
+    const std::pair<Index, Index> k{std::min(a, e), std::max(a, e)};
+    const auto it = std::lower_bound(edges.begin(), edges.end(), k);
+    return it != edges.end() && *it == k ? mid[std::size_t(it - edges.begin())] : kInvalid;
   };
+  const std::size_t faces = m.face_count();
+  for (std::size_t f = 0; f < faces; ++f) {
+    const Face t = m.faces[f];
+    std::array<Index, 3> e;  // midpoint of edge t[c] -> t[c + 1], or kInvalid
+    int n = 0;
+    for (int c = 0; c < 3; ++c) n += (e[c] = mid_of(t[c], t[(c + 1) % 3])) != kInvalid;
+    if (n == 0) continue;
+    std::vector<Face> pieces;
+    if (n == 3) {
+      pieces = {{t[0], e[0], e[2], kInvalid},
+                {e[0], t[1], e[1], kInvalid},
+                {e[2], e[1], t[2], kInvalid},
+                {e[0], e[1], e[2], kInvalid}};
+    } else {
+      // Rotate so that the split edges come first: 0 (and 1 when two are split).
+      int r = 0;
+      while (!(e[r] != kInvalid && (n == 1 || e[(r + 1) % 3] != kInvalid))) ++r;
+      const Index a = t[r], b = t[(r + 1) % 3], c = t[(r + 2) % 3];
+      const Index ab = e[r], bc = e[(r + 1) % 3];
+      if (n == 1) {
+        pieces = {{a, ab, c, kInvalid}, {ab, b, c, kInvalid}};
+      } else {
+        pieces = {{ab, b, bc, kInvalid}, {a, ab, bc, kInvalid}, {a, bc, c, kInvalid}};
+      }
+    }
+    m.faces[f] = pieces[0];
+    for (std::size_t k = 1; k < pieces.size(); ++k) {
+      m.faces.push_back(pieces[k]);
+      m.face_patch.push_back(m.face_patch[f]);
+      w.face_old.push_back(w.face_old[f]);
+    }
+  }
+}
 
-  // Grow the covered region of each patch from its seeds across its own edges (breadth-first,
-  // ring by ring: each ring is checked in parallel and committed in order).
+// Grows the covered region of each patch from its covered seeds across its own edges
+// (breadth-first, ring by ring: each ring is checked in parallel and committed in order).
+// Returns the covering patch per vertex (kInvalid: uncovered), or nothing when cancelled.
+std::vector<PatchId> grow_cover(const SurfaceMesh& m, std::span<const Patch> patches,
+                                const HullQuery& query, std::span<const Index> candidates,
+                                std::span<const PatchId> seed_cover, double distance,
+                                Progress& progress) {
   // Neighbours by face edge, both ways (a border vertex's last neighbour follows it in no face),
   // as one array per vertex range: count -> exclusive scan -> fill in face order.
   std::vector<Index> ring_first(m.vertex_count() + 1, 0), ring;
@@ -436,198 +358,196 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
       cover[next[i]] = found[i];
       frontier.push_back(next[i]);
     }
-    if (progress.cancelled()) return stats;
+    if (progress.cancelled()) return {};
   }
 
-  // Border neighbours of each border vertex (along its own patch's border).
-  std::vector<std::vector<Index>> border_next(m.vertex_count());
-  for (const BorderEdge& e : b.edges) {
-    border_next[e.v0].push_back(e.v1);
-    border_next[e.v1].push_back(e.v0);
-  }
+  return cover;
+}
 
-  // Which covered vertices are cut: strip_only marks the border vertices of an overlap narrower
-  // than an edge.
-  std::vector<std::uint8_t> strip_only(m.vertex_count(), 0);
+// Cuts every face along the border of the patches below its own (marching triangles): an edge
+// from a covered corner to an uncovered one is cut where it leaves them, and each face keeps
+// its part outside them. Corners never move, so no face turns over.
+template <class OnLower>
+void cut_faces(Work& w, std::span<const PatchId> cover, const OnLower& on_lower, double distance,
+               OverlapStats& stats) {
+  SurfaceMesh& m = w.mesh;
+  // Score: where each edge from a covered corner to an uncovered one leaves the patches below
+  // (bisection on their exact surfaces), as the share of the edge from its covered end.
+  std::vector<EdgeCut> cuts;
+  for (const Face& t : m.faces) {
+    for (int c = 0; c < 3; ++c) {
+      const Index a = t[c], e = t[(c + 1) % 3];
+      if ((cover[a] == kInvalid) == (cover[e] == kInvalid)) continue;
+      cuts.push_back(cover[a] != kInvalid ? EdgeCut{a, e} : EdgeCut{e, a});
+    }
+  }
+  std::sort(cuts.begin(), cuts.end(), edge_cut_less);
+  cuts.erase(std::unique(
+                 cuts.begin(), cuts.end(),
+                 [](const EdgeCut& x, const EdgeCut& y) { return x.in == y.in && x.out == y.out; }),
+             cuts.end());
+  parallel_for(0, cuts.size(), [&](std::size_t i) {
+    const Vec3d from = m.positions[cuts[i].in], to = m.positions[cuts[i].out];
+    const PatchId p = m.vertex_patch[cuts[i].in];
+    const double len = norm(to - from);
+    double lo = 0, hi = 1;  // covered at lo, not at hi
+    for (int it = 0; it < 40 && (hi - lo) * len > 1e-3 * distance; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (on_lower(from + mid * (to - from), p) ? lo : hi) = mid;
+    }
+    cuts[i].t = lo;
+  });
+
+  // Select: a corner within kOnBorder of an edge from where that edge leaves the patches below
+  // lies on their border (the snap closes the rest); the cuts left run between corners inside
+  // and outside, each a new vertex (in edge order).
+  std::vector<Side> side(m.vertex_count(), Side::kOut);
+  for (std::size_t v = 0; v < side.size(); ++v) {
+    if (cover[v] != kInvalid) side[v] = Side::kIn;
+  }
+  for (const EdgeCut& c : cuts) {
+    if (c.t < kOnBorder) side[c.in] = Side::kOn;
+    if (c.t > 1 - kOnBorder) side[c.out] = Side::kOn;
+  }
+  std::vector<Index> cut_vertex(cuts.size(), kInvalid);
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    const EdgeCut& c = cuts[i];
+    if (side[c.in] != Side::kIn || side[c.out] != Side::kOut) continue;
+    cut_vertex[i] = Index(m.vertex_count());
+    const double t = c.t;
+    m.positions.push_back(m.positions[c.in] + t * (m.positions[c.out] - m.positions[c.in]));
+    m.vertex_patch.push_back(m.vertex_patch[c.in]);
+    m.vertex_uv.push_back(m.vertex_uv[c.in] + t * (m.vertex_uv[c.out] - m.vertex_uv[c.in]));
+    w.vert_old.push_back(w.vert_old[t < 0.5 ? c.in : c.out]);
+  }
+  const auto cut_on = [&](Index in, Index out) {
+    const auto it = std::lower_bound(cuts.begin(), cuts.end(), EdgeCut{in, out}, edge_cut_less);
+    return cut_vertex[std::size_t(it - cuts.begin())];
+  };
+
+  // Apply: each face keeps its part outside the patches below (Sutherland-Hodgman against the
+  // cut), as one or two triangles; a face with every corner on the border stays if its centroid
+  // is off them. Faces come out in input order, each piece with its face's provenance.
+  std::vector<std::uint8_t> centroid_off(m.face_count(), 1);
+  parallel_for(0, m.face_count(), [&](std::size_t f) {
+    const Face& t = m.faces[f];
+    if (side[t[0]] == Side::kOn && side[t[1]] == Side::kOn && side[t[2]] == Side::kOn) {
+      centroid_off[f] = !on_lower(face_centroid(m.positions, t), m.face_patch[f]);
+    }
+  });
+  std::vector<Face> faces;
+  std::vector<PatchId> face_patch;
+  std::vector<Index> face_old;
+  faces.reserve(m.face_count());
+  face_patch.reserve(m.face_count());
+  face_old.reserve(m.face_count());
+  const auto emit = [&](Index a, Index b, Index c, std::size_t f) {
+    faces.push_back({a, b, c, kInvalid});
+    face_patch.push_back(m.face_patch[f]);
+    face_old.push_back(w.face_old[f]);
+  };
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    const Face t = m.faces[f];
+    bool any_in = false, any_out = false;
+    for (int c = 0; c < 3; ++c) {
+      any_in |= side[t[c]] == Side::kIn;
+      any_out |= side[t[c]] == Side::kOut;
+    }
+    if (!any_in && (any_out || centroid_off[f])) {
+      emit(t[0], t[1], t[2], f);
+      continue;
+    }
+    const double area = face_area(m.positions, t);
+    if (!any_out) {
+      ++stats.triangles;
+      stats.area += area;
+      continue;
+    }
+    std::array<Index, 4> poly;
+    int n = 0;
+    for (int c = 0; c < 3; ++c) {
+      const Index a = t[c], e = t[(c + 1) % 3];
+      if (side[a] != Side::kIn) poly[n++] = a;
+      if (side[a] == Side::kIn && side[e] == Side::kOut) poly[n++] = cut_on(a, e);
+      if (side[a] == Side::kOut && side[e] == Side::kIn) poly[n++] = cut_on(e, a);
+    }
+    const std::size_t first = faces.size();
+    if (n == 3) {
+      emit(poly[0], poly[1], poly[2], f);
+    } else {
+      // The shorter diagonal of the quadrilateral.
+      const auto& x = m.positions;
+      if (norm(x[poly[2]] - x[poly[0]]) <= norm(x[poly[3]] - x[poly[1]])) {
+        emit(poly[0], poly[1], poly[2], f);
+        emit(poly[0], poly[2], poly[3], f);
+      } else {
+        emit(poly[1], poly[2], poly[3], f);
+        emit(poly[1], poly[3], poly[0], f);
+      }
+    }
+    double kept = 0;
+    for (std::size_t k = first; k < faces.size(); ++k) kept += face_area(m.positions, faces[k]);
+    stats.area += area - kept;
+  }
+  m.faces = std::move(faces);
+  m.face_patch = std::move(face_patch);
+  w.face_old = std::move(face_old);
+}
+
+}  // namespace
+
+OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& b,
+                             const MergeOptions& options, double length, Progress& progress) {
+  OverlapStats stats;
+  SurfaceMesh& m = w.mesh;
+  const double distance = options.overlap_distance > 0 ? options.overlap_distance : 1e-4 * length;
+  // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
+  const SegmentGrid border_grid(m.positions, b.edges);
+  const std::vector<Index> candidates = seed_candidates(m, b, border_grid, options, distance);
+  if (candidates.empty()) return stats;
+  // The seeds need only the faces around them; building a BVH over the whole hull would cost
+  // more than the merge itself. Only when a seed is covered is a query built over the patches
+  // that may lie under a patch with a covered seed, for growing the covered regions and cutting
+  // them.
+  std::vector<PatchId> seed_cover(candidates.size(), kInvalid);
   {
-    // A face whose corners lie on different lower patches may span a gap between them: it is
-    // covered only if its centroid is too. Where it is not, its corners stay.
-    std::vector<std::uint8_t> spans_gap(m.face_count(), 0);
-    parallel_for(0, m.face_count(), [&](std::size_t f) {
-      const Face& t = m.faces[f];
-      if (cover[t[0]] == kInvalid || cover[t[1]] == kInvalid || cover[t[2]] == kInvalid) return;
-      if (cover[t[0]] == cover[t[1]] && cover[t[1]] == cover[t[2]]) return;
-      const ClosestPoint cp = query.closest_point_in_range(face_centroid(m.positions, t), 0,
-                                                           m.face_patch[f], 20 * distance);
-      spans_gap[f] = !(cp.valid() && cp.distance <= 3 * distance);
+    const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance);
+    if (near.faces.empty()) return stats;
+    const HullQuery seed_query(patches, near);
+    parallel_for(0, candidates.size(), [&](std::size_t i) {
+      seed_cover[i] = covering_patch(seed_query, patches, m, candidates[i], distance);
     });
-    for (std::size_t f = 0; f < m.face_count(); ++f) {
-      if (!spans_gap[f]) continue;
-      for (int c = 0; c < 3; ++c) cover[m.faces[f][c]] = kInvalid;
-    }
-    // An inner covered vertex that no fully covered face holds lies under a covered sliver one
-    // edge wide (a thin strip lying on the patch); moving it would fold the faces on its two
-    // sides over each other. It stays, and snapping handles the sliver. A covered vertex on the
-    // patch's own border is where an overlap narrower than an edge begins: it moves inwards to
-    // where the patch leaves the one below, which cuts the overlap away.
-    std::vector<std::uint8_t> in_removed(m.vertex_count(), 0);
-    for (const Face& t : m.faces) {
-      if (cover[t[0]] != kInvalid && cover[t[1]] != kInvalid && cover[t[2]] != kInvalid) {
-        for (int c = 0; c < 3; ++c) in_removed[t[c]] = 1;
-      }
-    }
-    for (std::size_t v = 0; v < cover.size(); ++v) {
-      if (in_removed[v] || cover[v] == kInvalid) continue;
-      if (border_next[v].empty() || on_shared_border(Index(v))) {
-        cover[v] = kInvalid;
-      } else {
-        strip_only[v] = 1;
-      }
-    }
   }
-
-  // Apply, patch by patch: covered faces go, and covered corners of straddling faces move to
-  // where their edges leave the patches below (tested on the exact surfaces, which cuts do not
-  // change, so the order of the patches does not matter).
-  std::vector<std::vector<Index>> faces_of(patches.size());
-  for (std::size_t f = 0; f < m.face_count(); ++f) faces_of[m.face_patch[f]].push_back(Index(f));
-  std::vector<std::uint8_t> keep(m.face_count(), 1);
-  for (std::size_t p = 1; p < patches.size(); ++p) {
-    // Faces with every corner covered go; covered corners of the others move.
-    double before = 0;
-    std::vector<Index> straddling;
-    for (Index f : faces_of[p]) {
-      const Face& t = m.faces[f];
-      const int covered =
-          (cover[t[0]] != kInvalid) + (cover[t[1]] != kInvalid) + (cover[t[2]] != kInvalid);
-      if (covered == 0) continue;
-      const double area = face_area(m.positions, t);
-      if (covered == 3) {
-        keep[f] = 0;
-        ++stats.triangles;
-        stats.area += area;
-      } else {
-        straddling.push_back(f);
-        before += area;
-      }
-    }
-    std::vector<Index> moved;
-    for (Index f : straddling) {
-      for (int c = 0; c < 3; ++c) {
-        if (cover[m.faces[f][c]] != kInvalid) moved.push_back(m.faces[f][c]);
-      }
-    }
-    std::sort(moved.begin(), moved.end());
-    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
-    const auto slot = [&](Index v) {
-      return std::size_t(std::lower_bound(moved.begin(), moved.end(), v) - moved.begin());
-    };
-    // Each moved corner goes to where its edges towards uncovered corners leave the covered
-    // region (bisection on the exact surfaces of the patches below), the nearest such point:
-    // that is the cut along the covering patches' border.
-    // A corner on the patch's border (the hull's outline, say) leaves along that border, so
-    // that the outline keeps its place. star: the faces that stay around each moved corner.
-    std::vector<std::vector<Index>> out_to(moved.size()), star(moved.size());
-    for (Index f : straddling) {
-      const Face& t = m.faces[f];
-      for (int c = 0; c < 3; ++c) {
-        if (cover[t[c]] == kInvalid) continue;
-        const std::size_t i = slot(t[c]);
-        star[i].push_back(f);
-        for (int d = 1; d < 3; ++d) {
-          const Index u = t[(c + d) % 3];
-          if (cover[u] == kInvalid) out_to[i].push_back(u);
-        }
-      }
-    }
-    std::vector<std::uint8_t> keeps_outline(moved.size(), 0);
-    for (std::size_t i = 0; i < moved.size(); ++i) {
-      const auto& along = border_next[moved[i]];
-      std::vector<Index> on_border;
-      for (Index u : out_to[i]) {
-        if (std::find(along.begin(), along.end(), u) != along.end()) on_border.push_back(u);
-      }
-      if (!along.empty() && !on_border.empty()) {
-        out_to[i] = std::move(on_border);
-        keeps_outline[i] = 1;
-      }
-    }
-    const auto on_lower = [&](const Vec3d& x) {
-      // The chord of an edge strays from the surface by up to the tessellation tolerance.
-      const ClosestPoint cp = query.closest_point_in_range(x, 0, PatchId(p), 20 * distance);
-      return cp.valid() && cp.distance <= 3 * distance;
-    };
-    std::vector<Vec3d> along_edge(moved.size()), onto_border(moved.size());
-    std::vector<Index> onto_vertex(moved.size(), kInvalid);
-    parallel_for(0, moved.size(), [&](std::size_t i) {
-      const Vec3d from = m.positions[moved[i]];
-      double best = std::numeric_limits<double>::infinity();
-      along_edge[i] = from;
-      double reach = 0, fraction = 1;
-      Index toward = kInvalid;
-      for (Index u : out_to[i]) {
-        const Vec3d to = m.positions[u];
-        reach = std::max(reach, norm(to - from));
-        double lo = 0, hi = 1;  // covered at lo, not at hi
-        for (int it = 0; it < 40 && (hi - lo) * norm(to - from) > 1e-3 * distance; ++it) {
-          const double mid = 0.5 * (lo + hi);
-          (on_lower(from + mid * (to - from)) ? lo : hi) = mid;
-        }
-        const Vec3d exit = from + lo * (to - from);
-        const double d = norm(exit - from);
-        if (d < best) {
-          best = d;
-          along_edge[i] = exit;
-          fraction = lo;
-          toward = u;
-        }
-      }
-      // An outline vertex whose border does not leave the patches below before its neighbour
-      // would land on that neighbour: it collapses into it instead (below).
-      if (keeps_outline[i] && fraction > 0.99) {
-        onto_vertex[i] = toward;
-        along_edge[i] = onto_border[i] = from;
-        return;
-      }
-      onto_border[i] = keeps_outline[i] ? along_edge[i]
-                                        : nearest_exit(m, b, border_grid, query, moved[i],
-                                                       PatchId(p), star[i], reach, distance)
-                                              .value_or(along_edge[i]);
-    });
-    // The nearest point of the covering border is the cut itself, also where the overlap is
-    // narrower than an edge and no edge leaves the patches below near it. A face it would turn
-    // over takes the exits along its edges instead.
-    std::vector<Vec3d> target = onto_border;
-    for (Index f : straddling) {
-      const Face& t = m.faces[f];
-      std::array<Vec3d, 3> x;
-      for (int c = 0; c < 3; ++c) {
-        x[c] = cover[t[c]] != kInvalid ? target[slot(t[c])] : m.positions[t[c]];
-      }
-      const Vec3d before_n =
-          cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
-      if (dot(cross(x[1] - x[0], x[2] - x[0]), before_n) > 0) continue;
-      for (int c = 0; c < 3; ++c) {
-        if (cover[t[c]] != kInvalid) target[slot(t[c])] = along_edge[slot(t[c])];
-      }
-    }
-    // An overlap this narrow is a gap of the other sign: snapping closes it as it closes gaps,
-    // and a cut would leave edges a fraction of their length.
-    for (std::size_t i = 0; i < moved.size(); ++i) {
-      const Index v = moved[i];
-      if (!strip_only[v]) continue;
-      const auto at = std::lower_bound(b.vertices.begin(), b.vertices.end(), v);
-      const double edge = b.edge_length[std::size_t(at - b.vertices.begin())];
-      if (norm(target[i] - m.positions[v]) < kNarrowShare * edge) target[i] = m.positions[v];
-    }
-    for (std::size_t i = 0; i < moved.size(); ++i) m.positions[moved[i]] = target[i];
-    collapse_onto_neighbours(m, faces_of[p], moved, onto_vertex, keep, stats);
-    double after = 0;
-    for (Index f : straddling) after += face_area(m.positions, m.faces[f]);
-    stats.area += before - after;
+  if (progress.cancelled()) return stats;
+  if (std::all_of(seed_cover.begin(), seed_cover.end(), [](PatchId p) { return p == kInvalid; })) {
+    return stats;
   }
+  const HullQuery query(patches,
+                        faces_under(m, candidates, seed_cover, patches.size(), 20 * distance));
+  stats.changed = true;  // from here on faces may be cut
 
-  compact_faces(w, keep);
+  std::vector<PatchId> cover =
+      grow_cover(m, patches, query, candidates, seed_cover, distance, progress);
+  if (cover.empty()) return stats;
+
+  const auto on_lower = [&](const Vec3d& x, PatchId p) {
+    // The chord of an edge strays from the surface by up to the tessellation tolerance, so the
+    // distance alone would count points up to that far past the border of the patches below as
+    // on them. Inside a patch the closest point lies straight below x; past its border it is on
+    // that border, off to the side by how far x is past it.
+    const ClosestPoint cp = query.closest_point_in_range(x, 0, p, 20 * distance);
+    if (!cp.valid() || !(cp.distance <= 3 * distance)) return false;
+    if (!cp.on_surface) return true;
+    const Vec3d d = x - cp.point;
+    return norm(d - dot(d, cp.normal) * cp.normal) <= kPastBorder * distance;
+  };
+  // An edge between corners on different lower patches may leave them on its way (across a
+  // gap between them, or round the inner corner where they meet): it is split there, so that
+  // the cut below can keep that part.
+  split_edges_off(w, cover, on_lower);
+  if (progress.cancelled()) return stats;
+
+  cut_faces(w, cover, on_lower, distance, stats);
   return stats;
 }
 
