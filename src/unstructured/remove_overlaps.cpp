@@ -16,7 +16,6 @@
 
 #include "core/bbox.h"
 #include "core/parallel.h"
-#include "mesh/adjacency.h"
 #include "query/hull_query.h"
 #include "unstructured/merge_border.h"
 #include "unstructured/merge_steps.h"
@@ -68,8 +67,8 @@ ClosestPoint closest_alike(const HullQuery& q, const Vec3d& x, const Vec3d& n, P
   return above.distance < below.distance ? above : below;
 }
 
-// The lowest-numbered patch below the vertex's own whose surface the vertex lies on, or
-// kInvalid.
+// The nearest patch below the vertex's own whose surface the vertex lies on with an agreeing
+// normal, or kInvalid.
 PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
                        Index v, double distance) {
   const PatchId own = m.vertex_patch[v];
@@ -223,6 +222,18 @@ SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
   return faces_kept(m, keep);
 }
 
+// Appends the point at share t of edge a -> e (one patch's vertices) as a new vertex of w: on
+// the chord, (u, v) interpolated, mapped back to the nearer end. Returns its index.
+Index add_edge_point(Work& w, Index a, Index e, double t) {
+  SurfaceMesh& m = w.mesh;
+  const Index v = Index(m.vertex_count());
+  m.positions.push_back(m.positions[a] + t * (m.positions[e] - m.positions[a]));
+  m.vertex_patch.push_back(m.vertex_patch[a]);
+  m.vertex_uv.push_back(m.vertex_uv[a] + t * (m.vertex_uv[e] - m.vertex_uv[a]));
+  w.vert_old.push_back(w.vert_old[t <= 0.5 ? a : e]);
+  return v;
+}
+
 // Splits every edge between corners covered by different lower patches at the first of its
 // points at 1/2, 1/4 and 3/4 that is on none of them (on_lower(x, patch) false), and the faces
 // on it (one, two or three split edges: two, three or four triangles). The new vertices are
@@ -254,13 +265,7 @@ void split_edges_off(Work& w, std::vector<PatchId>& cover, const OnLower& on_low
   std::vector<Index> mid(edges.size(), kInvalid);
   for (std::size_t i = 0; i < edges.size(); ++i) {
     if (at[i] < 0) continue;
-    const auto [a, e] = edges[i];
-    const double t = at[i];
-    mid[i] = Index(m.vertex_count());
-    m.positions.push_back(m.positions[a] + t * (m.positions[e] - m.positions[a]));
-    m.vertex_patch.push_back(m.vertex_patch[a]);
-    m.vertex_uv.push_back(m.vertex_uv[a] + t * (m.vertex_uv[e] - m.vertex_uv[a]));
-    w.vert_old.push_back(w.vert_old[t <= 0.5 ? a : e]);
+    mid[i] = add_edge_point(w, edges[i].first, edges[i].second, at[i]);
     cover.push_back(kInvalid);
   }
   const auto mid_of = [&](Index a, Index e) {
@@ -413,12 +418,7 @@ void cut_faces(Work& w, std::span<const PatchId> cover, const OnLower& on_lower,
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     const EdgeCut& c = cuts[i];
     if (side[c.in] != Side::kIn || side[c.out] != Side::kOut) continue;
-    cut_vertex[i] = Index(m.vertex_count());
-    const double t = c.t;
-    m.positions.push_back(m.positions[c.in] + t * (m.positions[c.out] - m.positions[c.in]));
-    m.vertex_patch.push_back(m.vertex_patch[c.in]);
-    m.vertex_uv.push_back(m.vertex_uv[c.in] + t * (m.vertex_uv[c.out] - m.vertex_uv[c.in]));
-    w.vert_old.push_back(w.vert_old[t < 0.5 ? c.in : c.out]);
+    cut_vertex[i] = add_edge_point(w, c.in, c.out, c.t);
   }
   const auto cut_on = [&](Index in, Index out) {
     const auto it = std::lower_bound(cuts.begin(), cuts.end(), EdgeCut{in, out}, edge_cut_less);
