@@ -43,6 +43,10 @@ constexpr double kLevelStep = 1.15;
 constexpr double kWitnessShare = 0.85;
 // The size gate's edge grows by at most this much per metre along the hull.
 constexpr double kGrading = 0.15;
+// The tightest bend radius the size field follows, in panel edges h, and the passes that settle
+// h against it.
+constexpr double kTightestRadius = 0.5;
+constexpr int kCapPasses = 4;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -357,12 +361,35 @@ CoarsenedMesh coarsen(std::span<const Patch> patches, const SurfaceMesh& fine,
   s.field.w_curvature = options.weights.curvature;
   s.field.w_sources = options.weights.sources;
   s.field.sources = options.sources;
-  s.cfactor = vertex_curvatures(patches, fine);
-  parallel_for(0, s.cfactor.size(),
-               [&](std::size_t v) { s.cfactor[v] = s.field.curvature_factor(s.cfactor[v]); });
-  s.field.h0 = options.panel_size > 0 ? options.panel_size
-                                      : calibrate_panel_size(fine, s.cfactor, s.field,
-                                                             target > 0 ? target : kDefaultPanels);
+  // The curvature the field follows is capped at a radius of kTightestRadius panels: panels
+  // of edge h cannot follow a tighter bend (a rounded stem, a strip patch a few millimetres
+  // wide), and shrinking them there only spreads small panels over the hull through the
+  // grading. Without --panel-size, h depends on the cap through the calibration: iterate.
+  const std::vector<double> kappa = vertex_curvatures(patches, fine);
+  s.cfactor.resize(kappa.size());
+  const auto set_factors = [&] {
+    parallel_for(0, s.cfactor.size(),
+                 [&](std::size_t v) { s.cfactor[v] = s.field.curvature_factor(kappa[v]); });
+  };
+  const auto calibrate = [&] {
+    return calibrate_panel_size(fine, s.cfactor, s.field, target > 0 ? target : kDefaultPanels);
+  };
+  if (options.panel_size > 0) {
+    s.field.h0 = options.panel_size;
+    s.field.kappa_max = 1 / (kTightestRadius * s.field.h0);
+    set_factors();
+  } else {
+    set_factors();
+    s.field.h0 = calibrate();
+    for (int it = 0; it < kCapPasses; ++it) {
+      s.field.kappa_max = 1 / (kTightestRadius * s.field.h0);
+      set_factors();
+      const double h = calibrate();
+      const bool settled = std::abs(h - s.field.h0) <= 1e-3 * s.field.h0;
+      s.field.h0 = h;
+      if (settled) break;
+    }
+  }
   report.panel_size = s.field.h0;
   s.gate_h.resize(s.position.size());
   parallel_for(0, s.gate_h.size(), [&](std::size_t v) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -17,7 +18,8 @@ namespace hm::coarsen_detail {
 
 // The panel edge wanted at a point: h(x) = h0 * c(x) * s(x), where
 //   c(x) = (1 + k(x) R)^(-w3 / 2)   curvature factor; k the larger principal curvature of the
-//                                   NURBS (1/m), R the curvature length: area ~ 1 / k for k R >> 1
+//                                   NURBS (1/m), at most kappa_max, R the curvature length:
+//                                   area ~ 1 / k for k R >> 1
 //   s(x) = prod_i (size_i / h0)^min(1, w4 phi_i(x))   source factor, where phi_i is 1 within
 //          half the radius of source i, then 1 - smoothstep(2 d / radius - 1) down to 0 at the
 //          radius; d is the distance to the source (0 inside a box)
@@ -25,6 +27,9 @@ namespace hm::coarsen_detail {
 struct SizeField {
   double h0 = 0;                // m
   double curvature_length = 0;  // m
+  // Curvature beyond this counts as this (1/m): a bend of a smaller radius than the panels can
+  // follow (coarsen sets it to 1 / (kTightestRadius h0)).
+  double kappa_max = std::numeric_limits<double>::infinity();
   double w_curvature = 1, w_sources = 1;
   std::vector<SizeSource> sources;
 

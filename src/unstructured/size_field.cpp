@@ -40,7 +40,7 @@ double source_distance(const SizeSource& src, const Vec3d& p) {
 
 double SizeField::curvature_factor(double kappa) const {
   if (w_curvature <= 0) return 1;
-  return std::pow(1 + std::abs(kappa) * curvature_length, -0.5 * w_curvature);
+  return std::pow(1 + std::min(std::abs(kappa), kappa_max) * curvature_length, -0.5 * w_curvature);
 }
 
 double SizeField::source_factor(const Vec3d& x) const {
