@@ -44,6 +44,9 @@ struct EdgeCut {
   Index in = kInvalid, out = kInvalid;
   double t = 0;
 };
+std::uint64_t edge_key(Index u, Index v) {
+  return (std::uint64_t{std::min(u, v)} << 32) | std::max(u, v);
+}
 bool edge_cut_less(const EdgeCut& a, const EdgeCut& b) {
   return a.in != b.in ? a.in < b.in : a.out < b.out;
 }
@@ -369,12 +372,81 @@ std::vector<PatchId> grow_cover(const SurfaceMesh& m, std::span<const Patch> pat
   return cover;
 }
 
+// Moves each corner that counts as on the border of the patches below (side kOn) to the nearest
+// of the exits that made it so, by under kOnBorder of an edge: the snap then has only the
+// other border to meet, not an overlap or a gap of its own as well. A corner on its patch's
+// border takes only exits along that border, so that the outline keeps its place. A move that
+// would turn a face around the corner over is not made (moves are tried in vertex order).
+void move_onto_border(Work& w, const Border& b, std::span<const EdgeCut> cuts,
+                      std::span<const Side> side) {
+  SurfaceMesh& m = w.mesh;
+  std::vector<std::uint64_t> border_keys(b.edges.size());
+  for (std::size_t e = 0; e < b.edges.size(); ++e) {
+    border_keys[e] = edge_key(b.edges[e].v0, b.edges[e].v1);
+  }
+  std::sort(border_keys.begin(), border_keys.end());
+  const auto along_border = [&](Index u, Index v) {
+    const bool on = std::binary_search(b.vertices.begin(), b.vertices.end(), u);
+    return !on || std::binary_search(border_keys.begin(), border_keys.end(), edge_key(u, v));
+  };
+  std::vector<std::pair<Index, Vec3d>> target;  // (corner, where), one per corner
+  std::vector<double> best(m.vertex_count(), std::numeric_limits<double>::infinity());
+  std::vector<Index> slot(m.vertex_count(), kInvalid);
+  const auto offer = [&](Index v, Index other, double d, const Vec3d& x) {
+    if (side[v] != Side::kOn || !along_border(v, other) || !(d < best[v])) return;
+    best[v] = d;
+    if (slot[v] == kInvalid) {
+      slot[v] = Index(target.size());
+      target.push_back({v, x});
+    } else {
+      target[slot[v]].second = x;
+    }
+  };
+  for (const EdgeCut& c : cuts) {
+    const Vec3d a = m.positions[c.in], e = m.positions[c.out];
+    const Vec3d x = a + c.t * (e - a);
+    const double len = norm(e - a);
+    if (c.t < kOnBorder) offer(c.in, c.out, c.t * len, x);
+    if (c.t > 1 - kOnBorder) offer(c.out, c.in, (1 - c.t) * len, x);
+  }
+  if (target.empty()) return;
+  std::sort(target.begin(), target.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::pair<Index, Index>> corner_face;  // (corner, face), sorted
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      if (slot[m.faces[f][c]] != kInvalid) corner_face.push_back({m.faces[f][c], Index(f)});
+    }
+  }
+  std::sort(corner_face.begin(), corner_face.end());
+  const auto normal_of = [&](const Face& t) {
+    return cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+  };
+  for (const auto& [v, x] : target) {
+    const auto lo =
+        std::lower_bound(corner_face.begin(), corner_face.end(), std::pair{v, Index(0)});
+    std::vector<Vec3d> before;
+    for (auto it = lo; it != corner_face.end() && it->first == v; ++it) {
+      before.push_back(normal_of(m.faces[it->second]));
+    }
+    const Vec3d from = m.positions[v];
+    m.positions[v] = x;
+    std::size_t k = 0;
+    for (auto it = lo; it != corner_face.end() && it->first == v; ++it, ++k) {
+      if (!(dot(normal_of(m.faces[it->second]), before[k]) > 0)) {
+        m.positions[v] = from;
+        break;
+      }
+    }
+  }
+}
+
 // Cuts every face along the border of the patches below its own (marching triangles): an edge
 // from a covered corner to an uncovered one is cut where it leaves them, and each face keeps
 // its part outside them. Corners never move, so no face turns over.
 template <class OnLower>
-void cut_faces(Work& w, std::span<const PatchId> cover, const OnLower& on_lower, double distance,
-               OverlapStats& stats) {
+void cut_faces(Work& w, const Border& b, std::span<const PatchId> cover, const OnLower& on_lower,
+               double distance, OverlapStats& stats) {
   SurfaceMesh& m = w.mesh;
   // Score: where each edge from a covered corner to an uncovered one leaves the patches below
   // (bisection on their exact surfaces), as the share of the edge from its covered end.
@@ -414,6 +486,7 @@ void cut_faces(Work& w, std::span<const PatchId> cover, const OnLower& on_lower,
     if (c.t < kOnBorder) side[c.in] = Side::kOn;
     if (c.t > 1 - kOnBorder) side[c.out] = Side::kOn;
   }
+  move_onto_border(w, b, cuts, side);
   std::vector<Index> cut_vertex(cuts.size(), kInvalid);
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     const EdgeCut& c = cuts[i];
@@ -547,7 +620,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   split_edges_off(w, cover, on_lower);
   if (progress.cancelled()) return stats;
 
-  cut_faces(w, cover, on_lower, distance, stats);
+  cut_faces(w, b, cover, on_lower, distance, stats);
   return stats;
 }
 
