@@ -27,8 +27,8 @@ namespace {
 constexpr double kMinNormalCos = 0.866;  // 30 degrees
 
 // A cut this close to a corner, as a share of its edge, is no cut: the corner lies on the
-// border of the patches below (the snap closes the rest, as it closes a gap), and a cut there
-// would leave a sliver.
+// border of the patches below and moves onto it (the snap closes the rest, as it closes a gap),
+// and a cut there would leave a sliver.
 constexpr double kOnBorder = 0.15;
 
 // A point of an edge is on the patches below when it lies past none of their borders by more
@@ -389,18 +389,13 @@ void move_onto_border(Work& w, const Border& b, std::span<const EdgeCut> cuts,
     const bool on = std::binary_search(b.vertices.begin(), b.vertices.end(), u);
     return !on || std::binary_search(border_keys.begin(), border_keys.end(), edge_key(u, v));
   };
-  std::vector<std::pair<Index, Vec3d>> target;  // (corner, where), one per corner
+  // Per corner: how far its nearest such exit is, and where (infinity: no move).
   std::vector<double> best(m.vertex_count(), std::numeric_limits<double>::infinity());
-  std::vector<Index> slot(m.vertex_count(), kInvalid);
+  std::vector<Vec3d> onto(m.vertex_count());
   const auto offer = [&](Index v, Index other, double d, const Vec3d& x) {
     if (side[v] != Side::kOn || !along_border(v, other) || !(d < best[v])) return;
     best[v] = d;
-    if (slot[v] == kInvalid) {
-      slot[v] = Index(target.size());
-      target.push_back({v, x});
-    } else {
-      target[slot[v]].second = x;
-    }
+    onto[v] = x;
   };
   for (const EdgeCut& c : cuts) {
     const Vec3d a = m.positions[c.in], e = m.positions[c.out];
@@ -409,35 +404,31 @@ void move_onto_border(Work& w, const Border& b, std::span<const EdgeCut> cuts,
     if (c.t < kOnBorder) offer(c.in, c.out, c.t * len, x);
     if (c.t > 1 - kOnBorder) offer(c.out, c.in, (1 - c.t) * len, x);
   }
-  if (target.empty()) return;
-  std::sort(target.begin(), target.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+  const auto moves = [&](Index v) { return best[v] < std::numeric_limits<double>::infinity(); };
   std::vector<std::pair<Index, Index>> corner_face;  // (corner, face), sorted
   for (std::size_t f = 0; f < m.face_count(); ++f) {
     for (int c = 0; c < 3; ++c) {
-      if (slot[m.faces[f][c]] != kInvalid) corner_face.push_back({m.faces[f][c], Index(f)});
+      if (moves(m.faces[f][c])) corner_face.push_back({m.faces[f][c], Index(f)});
     }
   }
+  if (corner_face.empty()) return;
   std::sort(corner_face.begin(), corner_face.end());
   const auto normal_of = [&](const Face& t) {
     return cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
   };
-  for (const auto& [v, x] : target) {
-    const auto lo =
-        std::lower_bound(corner_face.begin(), corner_face.end(), std::pair{v, Index(0)});
+  for (auto lo = corner_face.begin(); lo != corner_face.end();) {
+    const Index v = lo->first;
     std::vector<Vec3d> before;
     for (auto it = lo; it != corner_face.end() && it->first == v; ++it) {
       before.push_back(normal_of(m.faces[it->second]));
     }
     const Vec3d from = m.positions[v];
-    m.positions[v] = x;
-    std::size_t k = 0;
-    for (auto it = lo; it != corner_face.end() && it->first == v; ++it, ++k) {
-      if (!(dot(normal_of(m.faces[it->second]), before[k]) > 0)) {
-        m.positions[v] = from;
-        break;
-      }
+    m.positions[v] = onto[v];
+    auto it = lo;
+    for (std::size_t k = 0; it != corner_face.end() && it->first == v; ++it, ++k) {
+      if (!(dot(normal_of(m.faces[it->second]), before[k]) > 0)) m.positions[v] = from;
     }
+    lo = it;
   }
 }
 
