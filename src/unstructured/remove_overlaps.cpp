@@ -265,6 +265,7 @@ void split_edges_off(Work& w, std::vector<PatchId>& cover, const OnLower& on_low
       }
     }
   });
+  if (std::all_of(at.begin(), at.end(), [](double t) { return t < 0; })) return;
   std::vector<Index> mid(edges.size(), kInvalid);
   for (std::size_t i = 0; i < edges.size(); ++i) {
     if (at[i] < 0) continue;
