@@ -48,8 +48,10 @@ struct SnapStats {
 };
 // Welds border vertices of different patches and splits border edges at the other patches'
 // vertices (T-junctions), so that borders within tolerance meet vertex to vertex. border is
-// collect_border of the mesh as it comes in.
-SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& options, double length);
+// collect_border of the mesh as it comes in. tol_scale, when not empty, scales each border
+// vertex's tolerance (same order as border.vertices).
+SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& options, double length,
+                       std::span<const double> tol_scale = {});
 
 // Closes boundary loops of 3 or 4 vertices that run along two or more patches (the holes
 // pairwise zipping leaves where several patch corners meet), and pinholes of up to 16 vertices

@@ -101,11 +101,14 @@ double vertex_tolerance(const MergeOptions& options, double border_edge_length) 
   return options.gap_tolerance > 0 ? options.gap_tolerance : 0.5 * border_edge_length;
 }
 
-SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, double length) {
+SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, double length,
+                       std::span<const double> tol_scale) {
   SurfaceMesh& m = w.mesh;
   const std::size_t nb = b.vertices.size();
   std::vector<double> tol(nb);
-  for (std::size_t i = 0; i < nb; ++i) tol[i] = vertex_tolerance(options, b.edge_length[i]);
+  for (std::size_t i = 0; i < nb; ++i) {
+    tol[i] = vertex_tolerance(options, b.edge_length[i]) * (tol_scale.empty() ? 1 : tol_scale[i]);
+  }
   std::vector<Index> local(m.vertex_count(), kInvalid);  // mesh vertex -> border index
   for (std::size_t i = 0; i < nb; ++i) local[b.vertices[i]] = Index(i);
 

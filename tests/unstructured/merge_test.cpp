@@ -85,6 +85,21 @@ TEST(Merge, ManySmallPatchesMeetAtTheCentrePlaneWithoutAThirdFace) {
   expect_clean_half_hull(m, "round-bilge, 300 patches");
 }
 
+// Two patches whose borders come within tolerance of each other across the tip of a third,
+// narrower there than the tolerance, welded straight across it, and the tip lay on their seam
+// with a third face on one edge (kcs.iges at 40,000 triangles: patch 53's tip between patches
+// 10 and 21 on the flat side; the generated 300-patch chine hull likewise). The snap is tried
+// again with a smaller tolerance there.
+TEST(Merge, ThirdPatchTipBetweenTwoCloseBordersGetsNoThirdFace) {
+  const std::vector<Patch> patches = generated(HullKind::kChine, 300).patches;
+  expect_clean_half_hull(merge_of(patches, edge_length_for_triangles(patches, 40000)),
+                         "chine, 300 patches");
+  HM_REQUIRE_SHARED_HULL(path, "kcs.iges");
+  const ImportResult hull = read_iges_file(path.string());
+  expect_clean_half_hull(merge_of(hull.patches, edge_length_for_triangles(hull.patches, 40000)),
+                         "kcs.iges");
+}
+
 // A flat bilinear patch in the plane x = 0 with corners (y, z): a0, a1 along the lower side and
 // b0, b1 along the upper one.
 Patch plate(Vec2d a0, Vec2d a1, Vec2d b0, Vec2d b1) {
