@@ -8,7 +8,8 @@
 //   q4 sources     size_quality(r_s), r_s = max over the panels of l_eq / (h0 s(x))
 // with l_eq the edge of the equilateral triangle of the panel's area, size_quality(r) =
 // max(0, 1 - r / 2), and c, s the curvature and source factors (coarsen_state.h). Collapses run
-// best q first, but only those whose panels stay within a size gate r = max l_eq / h(x) <= level,
+// best q first, but only those whose panels stay within a size gate r <= level, where r is the
+// largest over the panels of max(l_eq, longest edge) / h(x),
 // h = h0 c s: the level starts small and rises when few candidates pass it, so panels grow evenly
 // against the field and a source's size is met where it is placed.
 #include "unstructured/coarsen.h"

@@ -139,7 +139,9 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
         return out;
       }
     }
-    const double l2sum = squared_norm(p1 - p0) + squared_norm(p2 - p1) + squared_norm(p0 - p2);
+    const double e01 = squared_norm(p1 - p0), e12 = squared_norm(p2 - p1),
+                 e20 = squared_norm(p0 - p2);
+    const double l2sum = e01 + e12 + e20;
     shape_new = std::min(shape_new, std::min(1.0, kShapePerNormal * len_new / l2sum));
     areas.push_back(0.5 * len_new);
     const double cf = std::min({s.cfactor[v], s.cfactor[w[0]], s.cfactor[w[1]], s.cfactor[w[2]]});
@@ -147,7 +149,9 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
     const double l2 = kEdge2PerNormal * len_new;
     const double hc = s.field.h0 * cf;
     r2_curv = std::max(r2_curv, l2 / (hc * hc));
-    r2_all = std::max(r2_all, l2 / (hg * hg));
+    // The gate holds the longest edge too: by l_eq alone a panel along a boundary grows long
+    // and flat, its line edge outrunning the panels inside.
+    r2_all = std::max(r2_all, std::max({l2, e01, e12, e20}) / (hg * hg));
     if (has_sources) {
       const double hs = s.field.h0 * s.field.source_factor((p0 + p1 + p2) / 3.0);
       r2_src = std::max(r2_src, l2 / (hs * hs));
