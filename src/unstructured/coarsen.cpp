@@ -35,7 +35,7 @@ using namespace coarsen_detail;
 constexpr std::size_t kDefaultPanels = 4000;
 // The per-round loops (regions, applying, rescoring) run hundreds of times on items of a few
 // microseconds: below this many items one thread does them faster than two.
-constexpr std::size_t kRoundSerialBelow = 4096;
+constexpr std::size_t kRoundSerialBelow = 512;
 constexpr double kFirstLevel = 0.05;
 constexpr double kLevelStep = 1.15;
 // Witnesses sample the surface at the fine vertices only; the panel can stray a little more
