@@ -1,10 +1,12 @@
 // Small holes: where three or four patches meet at a corner, zipping their borders pairwise can
 // leave a hole of one or two triangles' size. Closed boundary loops of 3 or 4 vertices that run
 // along two or more patches are such holes (a true boundary of a hull is never that short); they
-// are closed with one triangle or two (split along the shorter diagonal). Longer loops (up to 16
+// are closed with one triangle or two (split along the shorter diagonal that is not an edge
+// already). Longer loops (up to 16
 // vertices) are closed only when their perimeter is shorter than the longest edge of the faces
 // along them: pinholes.
 #include <algorithm>
+#include <cstdint>
 #include <set>
 
 #include "mesh/adjacency.h"
@@ -43,6 +45,17 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
 std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj) {
   SurfaceMesh& m = w.mesh;
   std::size_t filled = 0;
+  // The mesh's edges as sorted keys, collected at the first hole of four vertices.
+  std::vector<std::uint64_t> edge_keys;
+  const auto is_edge = [&](Index a, Index b) {
+    if (edge_keys.empty()) {
+      edge_keys.reserve(adj.edges.size());
+      for (const MeshEdge& e : adj.edges) edge_keys.push_back(std::uint64_t{e.v0} << 32 | e.v1);
+      std::sort(edge_keys.begin(), edge_keys.end());
+    }
+    const std::uint64_t k = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+    return std::binary_search(edge_keys.begin(), edge_keys.end(), k);
+  };
   for (const BoundaryLoop& loop : adj.boundary_loops) {
     if (!loop.closed) continue;
     for (const auto& [r, edges] : cycles_of(loop)) {
@@ -72,13 +85,19 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj) {
         // A pinhole: a fan from its first vertex (its shape is below the mesh's resolution).
         for (std::size_t i = 1; i + 1 < r.size(); ++i)
           add.push_back({r[0], r[i + 1], r[i], kInvalid});
-      } else if (norm(m.positions[r[0]] - m.positions[r[2]]) <=
-                 norm(m.positions[r[1]] - m.positions[r[3]])) {
-        add.push_back({r[0], r[2], r[1], kInvalid});
-        add.push_back({r[0], r[3], r[2], kInvalid});
       } else {
-        add.push_back({r[1], r[3], r[2], kInvalid});
-        add.push_back({r[1], r[0], r[3], kInvalid});
+        // The shorter diagonal, unless it is an edge of the mesh already (the hole then folds
+        // round it, and a third face would meet there).
+        const bool d02 = !is_edge(r[0], r[2]), d13 = !is_edge(r[1], r[3]);
+        if (!d02 && !d13) continue;
+        if (d02 && (!d13 || norm(m.positions[r[0]] - m.positions[r[2]]) <=
+                                norm(m.positions[r[1]] - m.positions[r[3]]))) {
+          add.push_back({r[0], r[2], r[1], kInvalid});
+          add.push_back({r[0], r[3], r[2], kInvalid});
+        } else {
+          add.push_back({r[1], r[3], r[2], kInvalid});
+          add.push_back({r[1], r[0], r[3], kInvalid});
+        }
       }
       for (const Face& f : add) {
         m.faces.push_back(f);

@@ -15,6 +15,7 @@
 #include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/features.h"
+#include "unstructured/merge_steps.h"
 
 namespace hm {
 namespace {
@@ -98,6 +99,45 @@ TEST(Merge, ThirdPatchTipBetweenTwoCloseBordersGetsNoThirdFace) {
   const ImportResult hull = read_iges_file(path.string());
   expect_clean_half_hull(merge_of(hull.patches, edge_length_for_triangles(hull.patches, 40000)),
                          "kcs.iges");
+}
+
+// A hole of four vertices whose shorter diagonal is already an edge of the mesh (a fin stands on
+// it here; on the generated 1,000-patch round-bilge hull at 40,000 triangles it was a fold of
+// the snap at the transom). Closing the hole along that diagonal gave the edge a third face;
+// the other diagonal closes it cleanly.
+TEST(MergeSteps, SmallHoleIsNotClosedAlongAnExistingEdge) {
+  merge::Work w;
+  SurfaceMesh& m = w.mesh;
+  auto at = [](int i, int j) { return Index(4 * j + i); };
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) m.positions.push_back({double(i), double(j), 0.0});
+  }
+  m.positions[at(2, 2)] = {1.8, 1.8, 0.0};  // the diagonal (1, 1)-(2, 2) is the shorter one
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      if (i == 1 && j == 1) continue;  // the hole
+      const PatchId p = i < 2 ? 0 : 1;
+      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), kInvalid});
+      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1), kInvalid});
+      m.face_patch.insert(m.face_patch.end(), {p, p});
+    }
+  }
+  m.positions.push_back({1.4, 1.4, 1.0});
+  m.faces.push_back({at(1, 1), at(2, 2), Index(16), kInvalid});  // the fin
+  m.face_patch.push_back(2);
+  m.vertex_patch.assign(m.positions.size(), 0);
+  m.vertex_uv.assign(m.positions.size(), {});
+  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
+  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+
+  const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
+  ASSERT_TRUE(before.nonmanifold_edges.empty());
+  EXPECT_EQ(merge::fill_small_holes(w, before), 1u);
+  const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(after.nonmanifold_edges.empty());
+  EXPECT_TRUE(after.inconsistent_edges.empty());
+  EXPECT_EQ(after.boundary_loops.size(), before.boundary_loops.size() - 1);
+  EXPECT_EQ(m.face_count(), 19u);  // 16 round the hole, the fin, and the two new faces
 }
 
 // A flat bilinear patch in the plane x = 0 with corners (y, z): a0, a1 along the lower side and
