@@ -2,9 +2,8 @@
 // leave a hole of one or two triangles' size. Closed boundary loops of 3 or 4 vertices that run
 // along two or more patches are such holes (a true boundary of a hull is never that short); they
 // are closed with one triangle or two (split along the shorter diagonal that is not an edge
-// already). Longer loops (up to 16
-// vertices) are closed only when their perimeter is shorter than the longest edge of the faces
-// along them: pinholes.
+// already). Longer loops (up to 16 vertices) are closed only when their perimeter is shorter than
+// the longest edge of the faces along them: pinholes.
 #include <algorithm>
 #include <cstdint>
 #include <set>
