@@ -37,25 +37,25 @@ void check_input(std::span<const Patch> patches, const SurfaceMesh& t) {
   }
 }
 
-// Snapping is tried at most this many times more (see snap_checked).
+// Snapping is tried at most this many times more (see snap_and_orient).
 constexpr int kSnapRetries = 3;
 
-// Snaps the borders and drops the degenerate faces, then checks for edges with three faces or
-// more. Two patches whose borders come within tolerance of each other across the tip of a third,
-// narrower than that tolerance there (kcs.iges at 40,000 triangles), weld straight across it, and
-// the third patch's tip then lies on their seam. Where that happens, snap again from the same
-// start with the tolerance halved at the border vertices near each such edge.
-merge::SnapStats snap_checked(merge::Work& w, const merge::Border& border,
-                              const MergeOptions& options, double length,
-                              std::size_t& degenerate_dropped) {
+// Snaps the borders, drops the degenerate faces and orients the faces (`adj` gets the oriented
+// adjacency), then checks for edges with three faces or more. Two patches whose borders come
+// within tolerance of each other across the tip of a third, narrower than that tolerance there
+// (kcs.iges at 40,000 triangles), weld straight across it, and the third patch's tip then lies
+// on their seam. Where that happens, all three steps run again from the same start with the
+// tolerance halved at the border vertices near each such edge.
+merge::SnapStats snap_and_orient(std::span<const Patch> patches, merge::Work& w,
+                                 const merge::Border& border, const MergeOptions& options,
+                                 double length, MergeReport& r, EdgeAdjacency& adj) {
   const merge::Work start = w;
   std::vector<double> scale(border.vertices.size(), 1.0);
   for (int attempt = 0;; ++attempt) {
-    merge::SnapStats s = merge::snap_borders(w, border, options, length, scale);
-    degenerate_dropped = merge::drop_degenerate(w, length);
-    if (attempt == kSnapRetries) return s;
-    const EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
-    if (adj.nonmanifold_edges.empty()) return s;
+    const merge::SnapStats s = merge::snap_borders(w, border, options, length, scale);
+    r.degenerate_faces_dropped = merge::drop_degenerate(w, length);
+    r.patches_flipped = merge::orient_faces(patches, w, adj);
+    if (attempt == kSnapRetries || adj.nonmanifold_edges.empty()) return s;
     bool changed = false;
     for (std::size_t i = 0; i < border.vertices.size(); ++i) {
       const Vec3d& p = start.mesh.positions[border.vertices[i]];
@@ -110,14 +110,13 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   }
   if (progress.cancelled()) throw UsageError("merge cancelled");
   progress.update(0.4);
-  const merge::SnapStats s = snap_checked(w, border, options, length, r.degenerate_faces_dropped);
+  EdgeAdjacency adj;  // of the oriented mesh
+  const merge::SnapStats s = snap_and_orient(patches, w, border, options, length, r, adj);
   r.vertices_welded = s.welded;
   r.tjunctions_split = s.split;
   r.gaps_closed = s.gaps_closed;
   r.widest_gap_closed = s.widest;
   progress.update(0.7);
-  EdgeAdjacency adj;  // of the oriented mesh
-  r.patches_flipped = merge::orient_faces(patches, w, adj);
   // After orienting: the loops must follow one winding to be closed against it.
   // Holes that touch at a vertex chain as one loop until one of them is closed: repeat a little.
   for (int pass = 0; pass < 3; ++pass) {
