@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/knuckle_hints.h"
 #include "cli/load_hull.h"
 #include "cli/run_record.h"
 #include "core/error.h"
@@ -29,6 +30,7 @@ struct MergeCommand {
   std::size_t triangles = 0;
   MergeOptions merge;
   FeatureOptions features;
+  KnuckleHintArgs hints;
 };
 
 std::vector<PolylineRecord> to_records(const SurfaceMesh& m, std::span<const FeatureLine> lines,
@@ -46,10 +48,13 @@ std::vector<PolylineRecord> to_records(const SurfaceMesh& m, std::span<const Fea
 
 int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   check_mesh_output(c.output);
+  const KnuckleHintSpecs hints = parse_knuckle_hints(c.hints);
   RunRecord& record = *g.record;
   record.log.stage("import");
   const long long t0 = now_ns();
   const ImportResult hull = load_hull(c.file, c.units, g.quiet);
+  FeatureOptions feature_options = c.features;
+  apply_knuckle_hints(hints, hull.patches, nullptr, c.file, feature_options);
   const double t_import = seconds_since(t0);
   TessellateOptions o = c.tessellate;
   if (c.triangles > 0) o.edge_length = edge_length_for_triangles(hull.patches, c.triangles);
@@ -69,7 +74,7 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
         c.file, merged.mesh, adj,
         "overlapping patches there? The surface is in " + c.output + " for inspection");
   }
-  const FeatureSet features = find_features(merged.mesh, adj, hull.patches, c.features);
+  const FeatureSet features = find_features(merged.mesh, adj, hull.patches, feature_options);
   const double t_features = seconds_since(t1);
 
   // Write the lines first: the mesh is the main output, and a failure leaves no mesh behind
@@ -178,6 +183,7 @@ void register_merge(CLI::App& app, const GlobalOptions& global, Action& action) 
   cmd->add_option("--knuckle-angle", c->features.knuckle_angle_deg,
                   "Dihedral angle in degrees above which an edge may be a knuckle")
       ->check(CLI::Range(1.0, 179.0));
+  add_knuckle_hint_options(cmd, c->hints);
   cmd->add_option("--waterline-z", c->features.waterline_z,
                   "z of a waterline cut: boundary edges on it are waterline");
   cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")

@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/floating_options.h"
+#include "cli/knuckle_hints.h"
 #include "cli/lid_output.h"
 #include "cli/load_hull.h"
 #include "cli/prepare_hull.h"
@@ -41,6 +42,7 @@ struct StructuredCommand {
   std::size_t triangles = 0;
   StructuredOptions structured;
   FeatureOptions features;
+  KnuckleHintArgs hints;
   FloatingArgs floating;
   std::string symmetry = "auto";
   LidArgs lid;
@@ -74,6 +76,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   }
   pa.cut_centre_plane = !heeled;
   pa.features = c.features;
+  pa.knuckle_hints = parse_knuckle_hints(c.hints);
   pa.quiet = g.quiet;
   pa.validate = g.validate;
   RunRecord& record = *g.record;
@@ -275,6 +278,7 @@ void register_structured(CLI::App& app, const GlobalOptions& global, Action& act
   cmd->add_option("--relax-passes", c->structured.relax_passes,
                   "Constrained smoothing passes (default 8)")
       ->check(CLI::Range(0, 1000));
+  add_knuckle_hint_options(cmd, c->hints);
   cmd->add_option("--knuckle-angle", c->features.knuckle_angle_deg,
                   "Dihedral angle in degrees above which an edge may be a knuckle")
       ->check(CLI::Range(1.0, 179.0));

@@ -14,6 +14,7 @@
 
 #include "cli/commands.h"
 #include "cli/floating_options.h"
+#include "cli/knuckle_hints.h"
 #include "cli/lid_output.h"
 #include "cli/load_hull.h"
 #include "cli/prepare_hull.h"
@@ -51,6 +52,7 @@ struct UnstructuredCommand {
   std::size_t triangles = 0;
   MergeOptions merge;
   FeatureOptions features;
+  KnuckleHintArgs hints;
   CoarsenOptions coarsen;
   std::string weights;
   std::vector<std::string> point_sources, line_sources, box_sources;
@@ -98,6 +100,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   pa.tessellate = c.tessellate;
   pa.merge = c.merge;
   pa.features = c.features;
+  pa.knuckle_hints = parse_knuckle_hints(c.hints);
   pa.quiet = g.quiet;
   pa.validate = g.validate;
   RunRecord& record = *g.record;
@@ -324,6 +327,7 @@ void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& a
   cmd->add_option("--curvature-length", c->coarsen.curvature_length,
                   "R in h / sqrt(1 + k R), m (default 0.05 L)")
       ->check(CLI::PositiveNumber);
+  add_knuckle_hint_options(cmd, c->hints);
   cmd->add_option("--knuckle-angle", c->features.knuckle_angle_deg,
                   "Dihedral angle in degrees above which an edge may be a knuckle")
       ->check(CLI::Range(1.0, 179.0));

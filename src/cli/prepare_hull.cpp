@@ -130,6 +130,8 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   }
   out.seconds_import = seconds_since(t0);
   const std::span<const Patch> patches = out.patches();
+  apply_knuckle_hints(args.knuckle_hints, patches,
+                      out.floating ? &out.floating->transform : nullptr, args.file, features);
 
   // The merge can leave an edge with three faces where three patch borders meet at a
   // resolution that happens to split them badly (issue 4). Where the caller allows it, the fine

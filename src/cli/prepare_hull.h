@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/floating_options.h"
+#include "cli/knuckle_hints.h"
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
 #include "quality/hydrostatics.h"
@@ -29,6 +30,7 @@ struct PrepareArgs {
   std::size_t fine_triangles = 0;
   MergeOptions merge;
   FeatureOptions features;
+  KnuckleHintSpecs knuckle_hints;  // added to `features` once the patches are placed
   bool quiet = false;
   // Times the fine mesh may be made denser, by retry_growth in triangle count, when the merge
   // leaves non-manifold or inconsistently oriented edges (only when fine_triangles sizes it).
