@@ -316,11 +316,16 @@ void register_unstructured(CLI::App& app, const GlobalOptions& global, Action& a
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--weights", c->weights,
                   "w_shape,w_area_ratio,w_curvature,w_sources (default 1,1,1,1)");
-  cmd->add_option("--source", c->point_sources, "Point source x,y,z,radius,size (m); may repeat");
+  // One value per occurrence: a repeatable option must not take the input file after it as
+  // one more value.
+  cmd->add_option("--source", c->point_sources, "Point source x,y,z,radius,size (m); may repeat")
+      ->allow_extra_args(false);
   cmd->add_option("--line-source", c->line_sources,
-                  "Line source x1,y1,z1,x2,y2,z2,radius,size (m); may repeat");
+                  "Line source x1,y1,z1,x2,y2,z2,radius,size (m); may repeat")
+      ->allow_extra_args(false);
   cmd->add_option("--box-source", c->box_sources,
-                  "Box source xmin,ymin,zmin,xmax,ymax,zmax,radius,size (m); may repeat");
+                  "Box source xmin,ymin,zmin,xmax,ymax,zmax,radius,size (m); may repeat")
+      ->allow_extra_args(false);
   cmd->add_option("--max-deviation", c->coarsen.max_deviation,
                   "Largest distance of the panels from the NURBS, m (default 1e-3 L)")
       ->check(CLI::PositiveNumber);

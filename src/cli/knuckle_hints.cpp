@@ -183,13 +183,16 @@ std::vector<KnuckleHint> resolve(std::span<const KnuckleHintSpec> specs,
 }  // namespace
 
 void add_knuckle_hint_options(CLI::App* cmd, KnuckleHintArgs& args) {
+  // One spec per occurrence: the input file after the option is not one more spec.
   cmd->add_option("--add-knuckle", args.add,
                   "Make these edges knuckles: plane:X,Y,Z,NX,NY,NZ[@D], points:X,Y,Z;X,Y,Z;...[@D] "
                   "(m, file frame; D default 1e-3 L), patches:A,B (indices) or de:A,B (IGES DE "
-                  "numbers); may repeat");
+                  "numbers); may repeat")
+      ->allow_extra_args(false);
   cmd->add_option("--suppress-knuckle", args.suppress,
                   "Never make these edges knuckles (same forms as --add-knuckle; wins over it); "
-                  "may repeat");
+                  "may repeat")
+      ->allow_extra_args(false);
 }
 
 KnuckleHintSpecs parse_knuckle_hints(const KnuckleHintArgs& args) {

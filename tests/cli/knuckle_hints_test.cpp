@@ -182,6 +182,28 @@ double edge_length_on_station(const fs::path& obj, double x0) {
   return total;
 }
 
+// A repeatable option takes one value per occurrence: the input file after it is the input
+// file (it was taken as one more value, and the command said "file is required"), on the
+// command line and from a job file, whose keys come in alphabetical order.
+TEST(CliKnuckleHints, RepeatedHintsBeforeTheFileAndInAJobFile) {
+  const fs::path dir = test::scratch_dir("cli_knuckle_hints_repeat");
+  const fs::path wigley = dir / "wigley.igs", out = dir / "m.vtu", job = dir / "job.json";
+  ASSERT_EQ(test::run_hullmesh("-q generate wigley --patches 4 -o " + test::q(wigley)).exit_code,
+            0);
+  auto r = test::run_hullmesh("merge --add-knuckle patches:0,1 --add-knuckle patches:2,3 " +
+                              test::q(wigley) + " -o " + test::q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(knuckle_lines(r.out).first, 2) << r.out;
+  std::ofstream(job) << R"({"command": "merge", "file": "wigley.igs", "output": "j.vtu",
+                           "add-knuckle": ["patches:0,1"], "suppress-knuckle": ["de:11,15"]})";
+  r = test::run_hullmesh("run " + test::q(job));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(knuckle_lines(r.out).first, 1) << r.out;
+  r = test::run_hullmesh("-q unstructured --source 10,1,2,5,1 " + test::q(wigley) + " -o " +
+                         test::q(dir / "s.gdf") + " --panels 300 --triangles 20000");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+}
+
 TEST(CliKnuckleHints, UnstructuredKeepsAnAddedKnuckleAsPanelEdges) {
   const fs::path dir = test::scratch_dir("cli_knuckle_hints_unstructured");
   const fs::path wigley = dir / "wigley.igs", plain = dir / "plain.obj",
