@@ -115,6 +115,12 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
                 merged.mesh.vertex_count());
     std::printf("  gaps closed: %zu (widest %.3g m); vertices welded %zu; T-junctions split %zu\n",
                 r.gaps_closed, r.widest_gap_closed, r.vertices_welded, r.tjunctions_split);
+    if (r.snap_retries > 0) {
+      std::printf(
+          "  snap run again %zu time%s with a smaller tolerance near edges with three "
+          "faces\n",
+          r.snap_retries, r.snap_retries == 1 ? "" : "s");
+    }
     std::printf("  gaps left open: %zu", r.open_gaps.size());
     if (!r.open_gaps.empty()) {
       const OpenGap& gw = r.open_gaps.front();

@@ -73,6 +73,7 @@ merge::SnapStats snap_and_orient(std::span<const Patch> patches, merge::Work& w,
     }
     if (!changed) return s;
     w = start;
+    ++r.snap_retries;
   }
 }
 

@@ -46,7 +46,9 @@ struct MergeReport {
   std::size_t tjunctions_split = 0;  // border vertices inserted into another patch's edge
   std::size_t gaps_closed = 0;       // welds and splits across a distance above 1e-9 L
   double widest_gap_closed = 0;      // metres
-  std::vector<OpenGap> open_gaps;    // sorted by width, widest first
+  // Times the snap ran again with a smaller tolerance near edges it had given three faces.
+  std::size_t snap_retries = 0;
+  std::vector<OpenGap> open_gaps;  // sorted by width, widest first
   std::size_t overlap_triangles_removed = 0;
   double overlap_area_removed = 0;       // m^2
   std::vector<PatchId> patches_flipped;  // wound against their declared orientation, turned
