@@ -9,12 +9,12 @@
 #include <fstream>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "io/read_mesh.h"
 #include "support/test_support.h"
 
 namespace hm::cli {
@@ -151,33 +151,21 @@ TEST(CliKnuckleHints, MergeAddsAndSuppressesKnuckles) {
   EXPECT_NEAR(length, 9.31, 0.05) << r.out;
 }
 
-// Total length of the mesh edges (OBJ) whose two ends lie on the plane x = x0.
-double edge_length_on_station(const fs::path& obj, double x0) {
-  std::ifstream in(obj);
-  std::vector<Vec3d> v;
-  std::set<std::pair<std::size_t, std::size_t>> edges;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ss(line);
-    std::string tag;
-    ss >> tag;
-    if (tag == "v") {
-      Vec3d p;
-      ss >> p.x >> p.y >> p.z;
-      v.push_back(p);
-    } else if (tag == "f") {
-      std::vector<std::size_t> f;
-      std::string item;
-      while (ss >> item) f.push_back(std::stoul(item.substr(0, item.find('/'))) - 1);
-      for (std::size_t k = 0; k < f.size(); ++k) {
-        const std::size_t a = f[k], b = f[(k + 1) % f.size()];
-        edges.insert({std::min(a, b), std::max(a, b)});
-      }
+// Total length of the mesh's edges whose two ends lie on the plane x = x0.
+double edge_length_on_station(const fs::path& path, double x0) {
+  const SurfaceMesh m = read_mesh(path.string()).mesh;
+  std::set<std::pair<Index, Index>> edges;
+  for (const Face& f : m.faces) {
+    const int n = is_triangle(f) ? 3 : 4;
+    for (int k = 0; k < n; ++k) {
+      const Index a = f[k], b = f[(k + 1) % n];
+      edges.insert({std::min(a, b), std::max(a, b)});
     }
   }
   double total = 0;
   for (const auto& [a, b] : edges) {
-    if (std::abs(v[a].x - x0) < 1e-6 && std::abs(v[b].x - x0) < 1e-6) total += norm(v[b] - v[a]);
+    const Vec3d &p = m.positions[a], &q = m.positions[b];
+    if (std::abs(p.x - x0) < 1e-6 && std::abs(q.x - x0) < 1e-6) total += norm(q - p);
   }
   return total;
 }
