@@ -13,6 +13,11 @@ namespace {
 // "No new sliver": a collapse may not make a panel worse than this shape unless the panels it
 // replaces already had one as bad.
 constexpr double kSliverShape = 0.25;
+// ... except by collapsing an edge shorter than this share of the size gate's edge at v. An edge
+// that short is left over from the fine mesh, and a row of slivers along it (a strip a few
+// millimetres wide along a keel or stem bar) can go only by collapsing it, one sliver for
+// another on the way.
+constexpr double kShortEdge = 0.1;
 
 // Vertices around v (each once), from its faces.
 void ring_of(const State& s, Index v, std::vector<Index>& out) {
@@ -159,7 +164,11 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
       r2_src = std::max(r2_src, l2 / (s.field.h0 * s.field.h0));
     }
   }
-  if (shape_new < std::min(kSliverShape, st.shape_min)) return out;
+  const double short_edge = kShortEdge * s.gate_h[v];
+  if (shape_new < std::min(kSliverShape, st.shape_min) &&
+      squared_norm(s.position[t] - s.position[v]) >= short_edge * short_edge) {
+    return out;
+  }
   // Neighbouring panels: the rest of t's faces, unchanged by the collapse.
   for (Index f : s.vertex_faces[t]) {
     const auto& tri = s.faces[f];
