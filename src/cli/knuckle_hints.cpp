@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/load_hull.h"
 #include "core/error.h"
 
 namespace hm::cli {
@@ -15,42 +16,11 @@ namespace {
 // A polyline hint longer than this is refused before anything is allocated for it.
 constexpr std::size_t kMaxHintPoints = 100000;
 
-// Exactly `count` comma-separated finite numbers from `part` of the spec `text`.
-std::vector<double> numbers(const std::string& part, std::size_t count, const std::string& option,
-                            const std::string& text) {
-  std::vector<double> out;
-  std::size_t from = 0;
-  while (from <= part.size()) {
-    const std::size_t to = std::min(part.find(',', from), part.size());
-    const std::string item = part.substr(from, to - from);
-    std::size_t used = 0;
-    double x = 0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size()) {
-      throw UsageError(option + " " + text + ": '" + item + "' is not a number");
-    }
-    if (!std::isfinite(x)) throw UsageError(option + " " + text + ": values must be finite");
-    out.push_back(x);
-    if (out.size() > count) break;
-    from = to + 1;
-  }
-  if (out.size() != count) {
-    const std::string got = out.size() > count ? "more" : std::to_string(out.size());
-    throw UsageError(option + " " + text + ": expected " + std::to_string(count) +
-                     " comma-separated numbers, got " + got);
-  }
-  return out;
-}
-
 // "what@D": the distance after the last '@' (absent: 0, the library's 1e-3 L).
 double split_distance(std::string& body, const std::string& option, const std::string& text) {
   const std::size_t at = body.rfind('@');
   if (at == std::string::npos) return 0;
-  const double d = numbers(body.substr(at + 1), 1, option, text)[0];
+  const double d = parse_numbers_in(body.substr(at + 1), 1, option + " " + text)[0];
   if (!(d > 0)) throw UsageError(option + " " + text + ": the distance after '@' must be > 0");
   body.resize(at);
   return d;
@@ -84,7 +54,7 @@ KnuckleHintSpec parse_one(const std::string& text, const std::string& option) {
   if (kind == "plane") {
     h.kind = KnuckleHint::Kind::kPlane;
     h.distance = split_distance(body, option, text);
-    const std::vector<double> v = numbers(body, 6, option, text);
+    const std::vector<double> v = parse_numbers_in(body, 6, option + " " + text);
     h.plane_point = {v[0], v[1], v[2]};
     h.plane_normal = {v[3], v[4], v[5]};
     if (!(norm(h.plane_normal) > 0)) {
@@ -102,7 +72,8 @@ KnuckleHintSpec parse_one(const std::string& text, const std::string& option) {
     std::size_t from = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t to = std::min(body.find(';', from), body.size());
-      const std::vector<double> v = numbers(body.substr(from, to - from), 3, option, text);
+      const std::vector<double> v =
+          parse_numbers_in(body.substr(from, to - from), 3, option + " " + text);
       h.points.push_back({v[0], v[1], v[2]});
       from = to + 1;
     }

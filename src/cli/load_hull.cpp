@@ -72,8 +72,8 @@ std::string describe_crossings(const std::string& file, std::span<const Patch> p
          who + " near " + where;
 }
 
-std::vector<double> parse_numbers(const std::string& text, std::size_t count,
-                                  const std::string& option) {
+std::vector<double> parse_numbers_in(const std::string& text, std::size_t count,
+                                     const std::string& where) {
   std::vector<double> out;
   std::stringstream ss(text);
   std::string item;
@@ -83,16 +83,20 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count,
       out.push_back(std::stod(item, &used));
       if (used != item.size()) throw std::invalid_argument(item);
     } catch (const std::exception&) {
-      throw UsageError(option + " " + text + ": '" + item + "' is not a number");
+      throw UsageError(where + ": '" + item + "' is not a number");
     }
-    if (!std::isfinite(out.back()))
-      throw UsageError(option + " " + text + ": values must be finite");
+    if (!std::isfinite(out.back())) throw UsageError(where + ": values must be finite");
   }
   if (out.size() != count) {
-    throw UsageError(option + " " + text + ": expected " + std::to_string(count) +
+    throw UsageError(where + ": expected " + std::to_string(count) +
                      " comma-separated numbers, got " + std::to_string(out.size()));
   }
   return out;
+}
+
+std::vector<double> parse_numbers(const std::string& text, std::size_t count,
+                                  const std::string& option) {
+  return parse_numbers_in(text, count, option + " " + text);
 }
 
 long long now_ns() {

@@ -37,6 +37,10 @@ std::string describe_crossings(const std::string& file, std::span<const Patch> p
 // UsageError naming the option, the value and the fault.
 std::vector<double> parse_numbers(const std::string& text, std::size_t count,
                                   const std::string& option);
+// The same, with `where` leading every message in place of "OPTION TEXT" (for a value that is
+// one part of a longer option value).
+std::vector<double> parse_numbers_in(const std::string& text, std::size_t count,
+                                     const std::string& where);
 
 // Seconds since `start` (steady clock), for the per-stage timings the commands print.
 double seconds_since(long long start_ns);

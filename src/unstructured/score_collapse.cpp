@@ -164,10 +164,9 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
       r2_src = std::max(r2_src, l2 / (s.field.h0 * s.field.h0));
     }
   }
-  const double short_edge = kShortEdge * s.gate_h[v];
-  if (shape_new < std::min(kSliverShape, st.shape_min) &&
-      squared_norm(s.position[t] - s.position[v]) >= short_edge * short_edge) {
-    return out;
+  if (shape_new < std::min(kSliverShape, st.shape_min)) {
+    const double short_edge = kShortEdge * s.gate_h[v];
+    if (squared_norm(s.position[t] - s.position[v]) >= short_edge * short_edge) return out;
   }
   // Neighbouring panels: the rest of t's faces, unchanged by the collapse.
   for (Index f : s.vertex_faces[t]) {
