@@ -17,6 +17,9 @@ namespace {
 
 using Impl = HullQuery::Impl;
 
+// A section point refined farther than this share of its fine edge's length stays on the edge.
+constexpr double kMaxRefineShare = 0.25;
+
 // The plane n.x = c in the local frame (n unit), and its model-frame form for refinement.
 struct CutPlane {
   Vec3d n;
@@ -169,13 +172,20 @@ SectionPoint refine_node(const Impl& m, const CutPlane& pl, const EdgeUse& e, bo
   const double f = e.sa / (e.sa - e.sb);
   const Vec3d estimate = m.to_model(m.local[va] + f * (m.local[vb] - m.local[va]));
   const PatchId p = m.tri_patch[e.tri];
-  if (!refine) {
-    const auto& uv = m.tri_uv[e.tri];
-    return {estimate, p, m.domains[p].map(uv[e.ka] + f * (uv[e.kb] - uv[e.ka]))};
+  const auto& uv = m.tri_uv[e.tri];
+  const SectionPoint on_edge{estimate, p, m.domains[p].map(uv[e.ka] + f * (uv[e.kb] - uv[e.ka]))};
+  if (!refine) return on_edge;
+  const query::RefinedPlanePoint r =
+      query::refine_plane_edge(m.patches[p].surface, m.domains[p], pl.n, pl.model_point, uv[e.ka],
+                               uv[e.kb], f, estimate, m.accept_tolerance());
+  // A refinement moves the crossing by the chord error, a small part of the edge. A merged
+  // triangle that a repair stretched across a patch border carries one patch's (u, v) at a
+  // corner that lies on another, and its crossings would refine to that patch's border, far
+  // away: they stay on the edge.
+  if (squared_norm(r.point - estimate) >
+      kMaxRefineShare * kMaxRefineShare * squared_norm(m.local[vb] - m.local[va])) {
+    return on_edge;
   }
-  const query::RefinedPlanePoint r = query::refine_plane_edge(
-      m.patches[p].surface, m.domains[p], pl.n, pl.model_point, m.tri_uv[e.tri][e.ka],
-      m.tri_uv[e.tri][e.kb], f, estimate, m.accept_tolerance());
   return {r.point, p, r.uv};
 }
 
