@@ -183,8 +183,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         r.split_twisted, r.cap_quads, r.cap_triangles);
     std::printf("  relocation: %zu moves kept by the quality objective\n", r.quality_moves);
     if (r.rows_joined > 0) {
-      std::printf("  %zu strips between rows of different curve counts joined through the border\n",
-                  r.rows_joined);
+      std::printf(
+          "  %zu strips between rows of different curve counts joined through the border (%zu "
+          "pieces of hull ending inside a strip capped there)\n",
+          r.rows_joined, r.curve_caps);
     }
     if (r.border_gaps > 0) {
       std::printf("  %zu slivers between row ends and the hull's border filled by fans\n",

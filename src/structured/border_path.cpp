@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hm::structured {
 namespace {
@@ -80,9 +81,13 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
   return out;
 }
 
-std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
-                                        const Vec3d& a, const Vec3d& b, const Metric& metric,
-                                        double tol) {
+namespace {
+
+// Of the two ways round the loop from a to b, the shorter whose every point has x in
+// [x_lo, x_hi]; empty if neither.
+std::vector<Vec3d> border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj, const Vec3d& a,
+                               const Vec3d& b, double x_lo, double x_hi, const Metric& metric,
+                               double tol) {
   const LoopSpot sa = nearest_boundary_edge(surface, adj, a);
   const LoopSpot sb = nearest_boundary_edge(surface, adj, b);
   if (sa.loop != sb.loop || sa.distance > tol || sb.distance > tol) return {};
@@ -91,7 +96,13 @@ std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAd
   double best_len = std::numeric_limits<double>::infinity();
   for (const bool forward : {true, false}) {
     std::vector<Vec3d> pts{a};
-    for (Index v : loop_path(loop, sa.edge, sb.edge, forward)) pts.push_back(surface.positions[v]);
+    bool inside = true;
+    for (Index v : loop_path(loop, sa.edge, sb.edge, forward)) {
+      const Vec3d& p = surface.positions[v];
+      inside = inside && p.x >= x_lo && p.x <= x_hi;
+      pts.push_back(p);
+    }
+    if (!inside) continue;
     pts.push_back(b);
     double len = 0;
     for (std::size_t i = 1; i < pts.size(); ++i) len += metric.length(pts[i - 1], pts[i]);
@@ -101,6 +112,21 @@ std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAd
     }
   }
   return best;
+}
+
+}  // namespace
+
+std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                                        const Vec3d& a, const Vec3d& b, const Metric& metric,
+                                        double tol) {
+  const double inf = std::numeric_limits<double>::infinity();
+  return border_path(surface, adj, a, b, -inf, inf, metric, tol);
+}
+
+std::vector<Vec3d> slab_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                                    const Vec3d& a, const Vec3d& b, double x_lo, double x_hi,
+                                    const Metric& metric, double tol) {
+  return border_path(surface, adj, a, b, x_lo, x_hi, metric, tol);
 }
 
 std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMesh& mesh,

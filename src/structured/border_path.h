@@ -32,6 +32,12 @@ std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAd
                                         const Vec3d& a, const Vec3d& b, const Metric& metric,
                                         double tol);
 
+// The same, but only a way round that stays between the planes x = x_lo and x = x_hi (the slab
+// between two stations); the shorter if both do, empty if neither does.
+std::vector<Vec3d> slab_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                                    const Vec3d& a, const Vec3d& b, double x_lo, double x_hi,
+                                    const Metric& metric, double tol);
+
 // Metric arc-length fractions (0 to 1) of a chain of mesh nodes.
 std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMesh& mesh,
                                     const Metric& metric);

@@ -1,6 +1,7 @@
-// Strips between rows with different curve counts (a bulb ahead of the stem, a dome or a skeg
-// that a station cuts off the hull): each row's curves are joined into one chain through the
-// surface's boundary between them, and the two chains are zipped.
+// Strips between rows with different curve counts (a bulb ahead of the stem, a dome, a skeg or a
+// propeller boss that a station cuts off the hull): curves joined through the surface's boundary
+// where it lies inside the strip, matched across it, and a piece of hull that ends inside the
+// strip capped against the boundary around its end.
 #pragma once
 
 #include <cstdint>
@@ -12,14 +13,18 @@
 
 namespace hm::structured {
 
+struct JoinCounts {
+  std::vector<std::size_t> closed;  // the strips closed
+  std::size_t caps = 0;             // groups of curves capped inside their strip
+};
+
 // strips: the j of each strip (rows j and j + 1) to join, ascending. Appends faces (and fixed
-// boundary nodes) to mesh and slots. Returns the strips it closed; a strip whose curve ends do
-// not lie on one boundary loop stays open.
-std::vector<std::size_t> join_rows(const SurfaceMesh& surface, const EdgeAdjacency& adj,
-                                   std::span<const Row> rows, std::span<const RowNodes> nodes,
-                                   std::span<const std::vector<Index>> first_vertex,
-                                   std::span<const std::size_t> strips, const Metric& metric,
-                                   const ZipOptions& zip, SurfaceMesh& mesh,
-                                   std::vector<NodeSlot>& slots);
+// boundary nodes) to mesh and slots. A strip whose curve ends do not lie on one boundary loop
+// stays open.
+JoinCounts join_rows(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                     std::span<const Row> rows, std::span<const RowNodes> nodes,
+                     std::span<const std::vector<Index>> first_vertex,
+                     std::span<const std::size_t> strips, const Metric& metric,
+                     const ZipOptions& zip, SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
 
 }  // namespace hm::structured

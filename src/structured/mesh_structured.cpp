@@ -84,10 +84,11 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
   std::vector<std::size_t> unpaired;
   for (std::size_t j = 0; j < strips.size(); ++j)
     if (strips[j].unmatched) unpaired.push_back(j);
-  const std::vector<std::size_t> joined =
+  const JoinCounts joined =
       join_rows(surface, adjacency, rows, nodes, first_vertex, unpaired, metric, zo, mesh, slots);
-  rep.rows_unmatched -= joined.size();
-  rep.rows_joined = joined.size();
+  rep.rows_unmatched -= joined.closed.size();
+  rep.rows_joined = joined.closed.size();
+  rep.curve_caps = joined.caps;
   const GapCounts gaps = close_border_gaps(surface, adjacency, row_end, metric, mesh, slots);
   rep.border_gaps = gaps.gaps;
   rep.cap_triangles += gaps.triangles;

@@ -77,6 +77,7 @@ struct StructuredReport {
   std::size_t quads = 0, triangles = 0, cap_triangles = 0, cap_quads = 0;
   std::size_t transoms = 0;        // ends capped through a transom's knuckle
   std::size_t rows_joined = 0;     // strips between rows of different curve counts, joined
+  std::size_t curve_caps = 0;      // of them, pieces of hull capped inside their strip
   std::size_t border_gaps = 0;     // slivers between row ends and the boundary, filled by fans
   std::size_t split_twisted = 0;   // quads made into two triangles
   std::size_t rows_unmatched = 0;  // strips whose rows could not be paired (left open)
