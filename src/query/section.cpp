@@ -180,7 +180,7 @@ SectionPoint refine_node(const Impl& m, const CutPlane& pl, const EdgeUse& e, bo
                                uv[e.kb], f, estimate, m.accept_tolerance());
   // A refinement moves the crossing by the chord error, a small part of the edge. A merged
   // triangle that a repair stretched across a patch border carries one patch's (u, v) at a
-  // corner that lies on another, and its crossings would refine to that patch's border, far
+  // corner that lies on another, and its crossings would refine towards that patch's border, far
   // away: they stay on the edge.
   if (squared_norm(r.point - estimate) >
       kMaxRefineShare * kMaxRefineShare * squared_norm(m.local[vb] - m.local[va])) {

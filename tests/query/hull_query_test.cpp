@@ -232,6 +232,40 @@ TEST(HullQuery, WigleyStationsLieOnTheClosedFormAndThePlane) {
   }
 }
 
+// A vertex whose (u, v) is that of the patch's border below it (as a merge repair can leave one
+// at a corner it moved onto another patch): the crossings on its edges would refine along a
+// parameter segment that runs down to the keel. They stay on the edges instead, so the station
+// stays in order from keel to waterline.
+TEST(HullQuery, CrossingsWithAFarCornerUvStayOnTheirEdges) {
+  Scene scene = wigley_scene();
+  auto nearest = [&](const Vec3d& target) {
+    Index best = 0;
+    for (Index v = 0; v < scene.mesh.vertex_count(); ++v) {
+      if (squared_norm(scene.mesh.positions[v] - target) <
+          squared_norm(scene.mesh.positions[best] - target))
+        best = v;
+    }
+    return best;
+  };
+  const Index bad = nearest({0.77, 0.4, -0.3});
+  const Vec3d at = scene.mesh.positions[bad];
+  scene.mesh.vertex_uv[bad] = scene.mesh.vertex_uv[nearest({at.x, 0, -kT})];
+  const HullQuery q = scene.query();
+  const Plane plane{{scene.mesh.positions[bad].x + 0.05, 0, 0}, {1, 0, 0}};
+  const Section s = q.section(plane);
+  ASSERT_EQ(s.polylines.size(), 1u);
+  const SectionPolyline& line = s.polylines[0];
+  for (std::size_t i = 0; i < line.points.size(); ++i) {
+    const Vec3d& p = line.points[i].point;
+    EXPECT_LT(std::abs(p.x - plane.point.x), 1e-9 * kL);
+    // On the NURBS, or on a fine edge within its chord error.
+    EXPECT_LT(std::abs(p.y - test::wigley_y(kL, kB, kT, p.x, p.z)), 1e-2);
+    if (i > 0) {
+      EXPECT_GT(p.z, line.points[i - 1].point.z) << i;
+    }
+  }
+}
+
 TEST(HullQuery, UnrefinedSectionsStayOnTheTriangles) {
   const Scene scene = wigley_scene();
   const HullQuery q = scene.query();
