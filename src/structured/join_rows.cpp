@@ -25,6 +25,10 @@ namespace {
 // The slab of a strip reaches this far beyond its two stations (in panel lengths along x): the
 // boundary between two curves crosses a station plane a little where it is refined on the NURBS.
 constexpr double kSlabMargin = 0.25;
+// A cap may reach farther beyond the strip's far station: that station drops a fragment of a
+// curve that ends just beyond it (a stem's last sliver above a bulb). The narrowest reach that
+// gives a reading wins.
+constexpr double kCapMargins[] = {0.25, 1.0, 3.0};
 
 // Curves (or groups) can stand for the same piece of hull across a strip only if their heights
 // overlap, to within this many panels.
@@ -72,10 +76,29 @@ class Joiner {
   bool by_groups(std::size_t j, std::size_t& caps) {
     const double margin = kSlabMargin * metric_.size.x;
     const double lo = rows_[j].x - margin, hi = rows_[j + 1].x + margin;
+    for (double panels : kCapMargins) {
+      const double reach = panels * metric_.size.x;
+      if (by_groups(j, lo, hi, rows_[j].x - reach, rows_[j + 1].x + reach, caps)) return true;
+    }
+    return false;
+  }
+
+  // Strip j as a last resort: every curve of each row joined the shorter way round.
+  bool by_shortest_joins(std::size_t j) {
+    const std::optional<Group> a = joined_all(j), b = joined_all(j + 1);
+    if (!a || !b) return false;
+    zip(chain(*a), chain(*b));
+    return true;
+  }
+
+ private:
+  // Strip j: links within [lo, hi], caps within [cap_lo, cap_hi].
+  bool by_groups(std::size_t j, double lo, double hi, double cap_lo, double cap_hi,
+                 std::size_t& caps) {
     const std::vector<Group> a = groups(j, lo, hi), b = groups(j + 1, lo, hi);
     std::vector<std::vector<Vec3d>> cap_a, cap_b;
-    for (const Group& g : a) cap_a.push_back(cap_path(g, lo, hi));
-    for (const Group& g : b) cap_b.push_back(cap_path(g, lo, hi));
+    for (const Group& g : a) cap_a.push_back(cap_path(g, cap_lo, cap_hi));
+    for (const Group& g : b) cap_b.push_back(cap_path(g, cap_lo, cap_hi));
     // Order-preserving alignment: a pair costs the distance between the groups' centres across
     // the strip; a cap, possible where the group ends inside the strip, costs kCapCost.
     enum Move : int { kNone, kPair, kCapA, kCapB };
@@ -115,15 +138,6 @@ class Joiner {
     return true;
   }
 
-  // Strip j as a last resort: every curve of each row joined the shorter way round.
-  bool by_shortest_joins(std::size_t j) {
-    const std::optional<Group> a = joined_all(j), b = joined_all(j + 1);
-    if (!a || !b) return false;
-    zip(chain(*a), chain(*b));
-    return true;
-  }
-
- private:
   // The row's curves in groups: curve c joins c + 1 where the boundary between them stays in
   // [lo, hi].
   std::vector<Group> groups(std::size_t j, double lo, double hi) {
