@@ -664,6 +664,26 @@ TEST(CliStructured, SharedHullsAtTheirWaterline) {
   }
 }
 
+// The generated bulb hull at 32,000 panels: the last stations cut the stem above the bulb as a
+// curve of its own, which ends between two stations (the one beyond drops its fragment). It is
+// capped inside its strip; the strip does not join it to the bulb through the neck behind the
+// strip, which made panels through the stem's.
+TEST(CliStructured, StemAboveTheBulbIsCappedInsideItsStrip) {
+  const fs::path dir = test::scratch_dir("cli_structured_bulb");
+  const fs::path igs = dir / "rb.igs", out = dir / "panels.vtu";
+  ASSERT_EQ(
+      run_hullmesh("-q generate round-bilge --patches 48 -o '" + igs.string() + "'").exit_code, 0);
+  const auto r = run_hullmesh("structured '" + igs.string() + "' -o '" + out.string() +
+                              "' --panels 32000 --draft 6.15");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("(1 pieces of hull ending inside a strip capped there)"), std::string::npos)
+      << r.out;
+  const nlohmann::json q = quality_json(out);
+  EXPECT_EQ(q["crossing_pairs"].get<std::size_t>(), 0u);
+  EXPECT_EQ(q["topology"]["nonmanifold_edges"].get<std::size_t>(), 0u);
+  EXPECT_EQ(q["topology"]["boundary_loops"].get<std::size_t>(), 1u);
+}
+
 // A full hull upright is meshed as its port half and mirrored: twice the half's panels, every
 // vertex with its mirror image, closed along the keel.
 TEST(CliStructured, FullHullIsMeshedAsAHalfAndMirrored) {
