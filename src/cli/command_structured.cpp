@@ -19,6 +19,7 @@
 #include "cli/run_record.h"
 #include "cli/validate_stage.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/write_mesh.h"
 #include "mesh/mirror_mesh.h"
 #include "mesh/snap_centre_plane.h"
@@ -90,6 +91,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                                                    kRowFineMin, kRowFineMax);
   PreparedHull ph;
   prepare_hull(pa, ph);
+  // The report's NURBS hydrostatics, beside the meshing.
+  Hydrostatics nurbs_hydro;
+  std::optional<BackgroundTask> nurbs_task;
+  if (ph.floating) nurbs_task.emplace([&] { nurbs_hydro = nurbs_hydrostatics(ph); });
   const SurfaceMesh& fine = ph.fine();
   // Meshed above the waterline too: the waterplane is a lateral block plane, so every row has a
   // node on it and the blocks below and above meet on the waterline.
@@ -140,7 +145,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   measure_panel_crossings(c.file, ph.patches(), *output, g.quiet, qo);
   const QualityReport quality = assess_quality(*output, qo);
   std::optional<HydrostaticsPair> hydro;
-  if (ph.floating) hydro = compare_hydrostatics(ph, *output, quality.half_hull);
+  if (ph.floating) {
+    nurbs_task->wait();
+    hydro = compare_hydrostatics(*output, quality.half_hull, nurbs_hydro);
+  }
   const double t_report = seconds_since(t2);
 
   MeshWriteOptions w;

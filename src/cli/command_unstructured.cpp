@@ -22,6 +22,7 @@
 #include "cli/validate_stage.h"
 #include "core/bbox.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/write_mesh.h"
 #include "mesh/adjacency.h"
 #include "mesh/mirror_mesh.h"
@@ -120,6 +121,10 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   }
   PreparedHull ph;
   prepare_hull(pa, ph);
+  // The report's NURBS hydrostatics, beside the coarsening.
+  Hydrostatics nurbs_hydro;
+  std::optional<BackgroundTask> nurbs_task;
+  if (ph.floating) nurbs_task.emplace([&] { nurbs_hydro = nurbs_hydrostatics(ph); });
   const std::span<const Patch> patches = ph.patches();
   const std::optional<Floating>& floating = ph.floating;
   const Tessellation& t = ph.tessellation;
@@ -187,7 +192,8 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   // the panels' geometric accuracy.
   std::optional<Hydrostatics> hydro_mesh, hydro_nurbs;
   if (floating) {
-    const HydrostaticsPair h = compare_hydrostatics(ph, *output, quality.half_hull);
+    nurbs_task->wait();
+    const HydrostaticsPair h = compare_hydrostatics(*output, quality.half_hull, nurbs_hydro);
     hydro_mesh = h.mesh;
     hydro_nurbs = h.nurbs;
   }

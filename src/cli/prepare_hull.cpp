@@ -65,13 +65,18 @@ void add_mirror_image(ImportResult& hull) {
   hull.bbox.add(Vec3d{hull.bbox.hi.x, -hull.bbox.lo.y, hull.bbox.hi.z});
 }
 
-HydrostaticsPair compare_hydrostatics(const PreparedHull& hull, const SurfaceMesh& panels,
-                                      bool panels_half_hull) {
+HydrostaticsPair compare_hydrostatics(const SurfaceMesh& panels, bool panels_half_hull,
+                                      const Hydrostatics& nurbs) {
   HydrostaticsPair h;
   FloatingPosition position;
   position.waterline_z = 0;
   position.half_hull = panels_half_hull;
   h.mesh = hydrostatics_mesh(panels, position);
+  h.nurbs = nurbs;
+  return h;
+}
+
+Hydrostatics nurbs_hydrostatics(const PreparedHull& hull) {
   // The NURBS integrals follow each patch's declared normal: turn the patches the merge found
   // wound into the hull, as it turned their faces. The report prints to 1e-5 relative and the
   // panels' own error is about 1e-3: 1e-7 on cells and trim loops, 7 levels deep, agrees with the
@@ -84,9 +89,10 @@ HydrostaticsPair compare_hydrostatics(const PreparedHull& hull, const SurfaceMes
   ho.rel_tol = 1e-7;
   ho.trim_tol = 1e-7;
   ho.max_depth = 7;
+  FloatingPosition position;
+  position.waterline_z = 0;
   position.half_hull = hull.file_half;
-  h.nurbs = hydrostatics_nurbs(outward, position, ho);
-  return h;
+  return hydrostatics_nurbs(outward, position, ho);
 }
 
 void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs) {

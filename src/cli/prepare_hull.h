@@ -91,8 +91,12 @@ void measure_panel_crossings(const std::string& file, std::span<const Patch> pat
 struct HydrostaticsPair {
   Hydrostatics mesh, nurbs;
 };
-HydrostaticsPair compare_hydrostatics(const PreparedHull& hull, const SurfaceMesh& panels,
-                                      bool panels_half_hull);
+HydrostaticsPair compare_hydrostatics(const SurfaceMesh& panels, bool panels_half_hull,
+                                      const Hydrostatics& nurbs);
+
+// The NURBS half of that: it depends on the placed patches alone, so the meshing commands start
+// it beside their mesher (BackgroundTask) and take it for the report.
+Hydrostatics nurbs_hydrostatics(const PreparedHull& hull);
 
 // One line: volume, wetted and waterplane area, LCB of the panels against the NURBS.
 void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs);

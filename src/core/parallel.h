@@ -5,11 +5,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <exception>
 #include <mutex>
+#include <utility>
 
 namespace hm {
 
@@ -74,5 +76,34 @@ void parallel_sort(It first, It last, Less less) {
     tbb::parallel_sort(first, last, less);
   }
 }
+
+// Runs f on a task of its own beside the caller's work, for a result the caller needs only later
+// and whose inputs stay untouched meanwhile (a report's reference figures). wait() joins it and
+// rethrows what f threw; the destructor joins it too, and swallows that. With one thread, f runs
+// when the caller waits (or helps with its own loops).
+class BackgroundTask {
+ public:
+  template <class F>
+  explicit BackgroundTask(F&& f) {
+    group_.run([this, f = std::forward<F>(f)] {
+      try {
+        f();
+      } catch (...) {
+        error_ = std::current_exception();
+      }
+    });
+  }
+  BackgroundTask(const BackgroundTask&) = delete;
+  BackgroundTask& operator=(const BackgroundTask&) = delete;
+  ~BackgroundTask() { group_.wait(); }
+  void wait() {
+    group_.wait();
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+  }
+
+ private:
+  tbb::task_group group_;
+  std::exception_ptr error_;
+};
 
 }  // namespace hm

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "support/test_support.h"
 
 namespace hm {
 
@@ -25,6 +26,27 @@ TEST(Parallel, ExceptionLeavesTaskAsTypedError) {
                               if (i == 777) throw GeometryError("bad patch");
                             }),
                GeometryError);
+}
+
+// The background task's result arrives by wait() with one thread (run when waited for) and with
+// two (beside the caller's loop), and what it throws comes out of wait() with its type.
+TEST(Parallel, BackgroundTaskResultAndErrorArriveAtWait) {
+  for (int threads : {1, 2}) {
+    test::with_threads(threads, [] {
+      long sum = 0;
+      BackgroundTask task([&] {
+        for (long i = 1; i <= 100000; ++i) sum += i;
+      });
+      std::vector<int> hits(10000, 0);
+      parallel_for(0, hits.size(), [&](std::size_t i) { hits[i] = 1; });
+      task.wait();
+      EXPECT_EQ(sum, 5000050000L);
+      EXPECT_EQ(std::accumulate(hits.begin(), hits.end(), 0), 10000);
+      BackgroundTask bad([] { throw GeometryError("bad patch"); });
+      EXPECT_THROW(bad.wait(), GeometryError);
+      return 0;
+    });
+  }
 }
 
 TEST(Errors, ExitCodesAreDistinct) {
