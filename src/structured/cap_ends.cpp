@@ -153,6 +153,7 @@ CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const F
     const Row& row = rows[j];
     if (row.curves.size() != 1) {
       ++counts.unmatched;
+      counts.open[aft ? 0 : 1] = true;
       continue;
     }
     const RowCurve& c = row.curves[0];
@@ -160,6 +161,7 @@ CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const F
     const LoopSpot sb = nearest_boundary_edge(surface, adj, c.points.back());
     if (sa.loop != sb.loop || sa.distance > tol || sb.distance > tol) {
       ++counts.unmatched;
+      counts.open[aft ? 0 : 1] = true;
       continue;
     }
     const std::vector<Index>& loop = adj.boundary_loops[sa.loop].vertices;
@@ -182,6 +184,7 @@ CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const F
     }
     if (best.empty() || best_score <= 0) {
       ++counts.unmatched;
+      counts.open[aft ? 0 : 1] = true;
       continue;
     }
     // New fixed nodes resampled along a polyline of the surface's boundary or knuckles, between

@@ -83,6 +83,27 @@ class Joiner {
     return false;
   }
 
+  // The end beyond row j (aft of it, or forward): its curves grouped through the boundary
+  // beyond, and every group capped there; false (and nothing added) if a group cannot be.
+  bool end_caps(std::size_t j, bool aft) {
+    const double margin = kSlabMargin * metric_.size.x;
+    const double lo = aft ? -kInf : rows_[j].x - margin, hi = aft ? rows_[j].x + margin : kInf;
+    const std::vector<Group> g = groups(j, lo, hi);
+    std::vector<std::vector<Vec3d>> paths;
+    for (const Group& group : g) {
+      paths.push_back(cap_path(group, lo, hi));
+      if (paths.back().empty()) return false;
+    }
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      if (aft) {
+        zip(cap_chain(g[k], paths[k]), chain(g[k]));
+      } else {
+        zip(chain(g[k]), cap_chain(g[k], paths[k]));
+      }
+    }
+    return true;
+  }
+
   // Strip j as a last resort: every curve of each row joined the shorter way round.
   bool by_shortest_joins(std::size_t j) {
     const std::optional<Group> a = joined_all(j), b = joined_all(j + 1);
@@ -280,9 +301,15 @@ JoinCounts join_rows(const SurfaceMesh& surface, const EdgeAdjacency& adj,
                      std::span<const Row> rows, std::span<const RowNodes> nodes,
                      std::span<const std::vector<Index>> first_vertex,
                      std::span<const std::size_t> strips, const Metric& metric,
-                     const ZipOptions& zip, SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
+                     const ZipOptions& zip, std::array<bool, 2> open_ends, SurfaceMesh& mesh,
+                     std::vector<NodeSlot>& slots) {
   JoinCounts counts;
   Joiner joiner(surface, adj, rows, nodes, first_vertex, metric, zip, mesh, slots);
+  for (const bool aft : {true, false}) {
+    const std::size_t j = aft ? 0 : rows.size() - 1;
+    if (!open_ends[aft ? 0 : 1] || rows.empty() || rows[j].curves.empty()) continue;
+    if (joiner.end_caps(j, aft)) ++counts.ends_closed;
+  }
   for (std::size_t j : strips) {
     if (rows[j].curves.empty() || rows[j + 1].curves.empty()) continue;
     if (joiner.by_groups(j, counts.caps) || joiner.by_shortest_joins(j)) counts.closed.push_back(j);

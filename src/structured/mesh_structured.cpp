@@ -84,9 +84,9 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
   std::vector<std::size_t> unpaired;
   for (std::size_t j = 0; j < strips.size(); ++j)
     if (strips[j].unmatched) unpaired.push_back(j);
-  const JoinCounts joined =
-      join_rows(surface, adjacency, rows, nodes, first_vertex, unpaired, metric, zo, mesh, slots);
-  rep.rows_unmatched -= joined.closed.size();
+  const JoinCounts joined = join_rows(surface, adjacency, rows, nodes, first_vertex, unpaired,
+                                      metric, zo, caps.open, mesh, slots);
+  rep.rows_unmatched -= joined.closed.size() + joined.ends_closed;
   rep.rows_joined = joined.closed.size();
   rep.curve_caps = joined.caps;
   const GapCounts gaps = close_border_gaps(surface, adjacency, row_end, metric, mesh, slots);

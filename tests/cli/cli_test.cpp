@@ -664,6 +664,25 @@ TEST(CliStructured, SharedHullsAtTheirWaterline) {
   }
 }
 
+// The whole file, no waterline cut: an end row above the waterline with two curves (DTMB 5415's
+// bow, ship_449's stern) is capped group by group through the boundary beyond it; it was left
+// open.
+TEST(CliStructured, WholeFileEndsWithTwoCurvesAreCapped) {
+  for (const char* file : {"dtmb5415.iges", "ship_449_patches.iges"}) {
+    const fs::path hull = test::shared_hull(file);
+    if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
+    const fs::path out = test::scratch_dir("cli_structured_whole") / "panels.vtu";
+    const auto r =
+        run_hullmesh("structured '" + hull.string() + "' -o '" + out.string() + "' --panels 2000");
+    ASSERT_EQ(r.exit_code, 0) << file << r.out;
+    EXPECT_EQ(r.out.find("left open"), std::string::npos) << file << r.out;
+    const nlohmann::json q = quality_json(out);
+    EXPECT_EQ(q["topology"]["boundary_loops"].get<std::size_t>(), 1u) << file;
+    EXPECT_EQ(q["topology"]["nonmanifold_edges"].get<std::size_t>(), 0u) << file;
+    EXPECT_EQ(q["crossing_pairs"].get<std::size_t>(), 0u) << file;
+  }
+}
+
 // The generated bulb hull at 32,000 panels: the last stations cut the stem above the bulb as a
 // curve of its own, which ends between two stations (the one beyond drops its fragment). It is
 // capped inside its strip; the strip does not join it to the bulb through the neck behind the
