@@ -99,11 +99,12 @@ void print_hydrostatics(const Hydrostatics& mesh, const Hydrostatics& nurbs) {
   auto rel = [](double a, double b) { return b != 0 ? 100 * (a - b) / b : 0.0; };
   std::printf(
       "  hydrostatics, mesh against NURBS: volume %.6g m^3 (%+.3f%%), wetted area %.6g m^2 "
-      "(%+.3f%%), waterplane area %.6g m^2 (%+.3f%%), LCB %.5g m (NURBS %.5g)\n",
+      "(%+.3f%%), waterplane area %.6g m^2 (%+.3f%%%s), LCB %.5g m (NURBS %.5g)\n",
       mesh.volume, rel(mesh.volume, nurbs.volume), mesh.wetted_area,
       rel(mesh.wetted_area, nurbs.wetted_area), mesh.waterplane_area,
-      rel(mesh.waterplane_area, nurbs.waterplane_area), mesh.buoyancy_centre.x,
-      nurbs.buoyancy_centre.x);
+      rel(mesh.waterplane_area, nurbs.waterplane_area),
+      mesh.waterplane_from_fluxes ? ", from the panels' fluxes: the waterline is open" : "",
+      mesh.buoyancy_centre.x, nurbs.buoyancy_centre.x);
 }
 
 void prepare_hull(const PrepareArgs& args, PreparedHull& out) {

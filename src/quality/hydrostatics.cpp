@@ -292,9 +292,25 @@ Hydrostatics hydrostatics_mesh(const SurfaceMesh& mesh, const FloatingPosition& 
 
   std::size_t open = 0;
   std::vector<std::vector<Vec3d>> chains = chain(waterline_edges(mesh, clip), open);
+  // The waterline polygon gives the exact section where it closes: loops, and for a half hull
+  // chains from the centre plane to the centre plane. Where a chain breaks off elsewhere (a
+  // file's open transom), its closing segment would cut across the waterplane; the fluxes through
+  // the wetted panels (the same figures as the polygon's on a closed hull) stand in for it.
+  const double on_centre = 1e-6 * box.diagonal();
+  bool sound = true;
+  for (std::size_t c = 0; c < open && c < chains.size(); ++c) {
+    sound = sound && position.half_hull && std::abs(chains[c].front().y) <= on_centre &&
+            std::abs(chains[c].back().y) <= on_centre;
+  }
   WaterplaneMoments w;
-  for (const std::vector<Vec3d>& c : chains) add_polygon(c, -1.0, w);  // clockwise from above
+  if (sound) {
+    for (const std::vector<Vec3d>& c : chains) add_polygon(c, -1.0, w);  // clockwise from above
+  } else {
+    using I = SurfaceIntegrals;
+    w = {sum.v[I::kAwp], sum.v[I::kSx], sum.v[I::kSy], sum.v[I::kSxx], sum.v[I::kSyy]};
+  }
   Hydrostatics h = finish_hydrostatics(sum, w, position.half_hull);
+  h.waterplane_from_fluxes = !sound;
   h.open_waterline_chains = open;
   // Repeat the first point: each polyline is explicitly closed (for a half hull an open chain's
   // closing segment lies on the centre plane).

@@ -68,7 +68,10 @@ struct Hydrostatics {
   // the end; for a half hull an open chain's closing segment lies on the centre plane).
   std::vector<std::vector<Vec3d>> waterline;
   std::size_t open_waterline_chains = 0;  // chains whose ends did not meet (before closing)
-  std::size_t lid_faces = 0;              // faces lying in the waterplane, left out
+  // Mesh only: the waterplane figures came from the panels' fluxes, as a waterline chain broke
+  // off away from the centre plane (an open transom), instead of from the waterline polygon.
+  bool waterplane_from_fluxes = false;
+  std::size_t lid_faces = 0;  // faces lying in the waterplane, left out
 };
 
 struct MeshHydrostaticsOptions {
@@ -82,7 +85,8 @@ struct MeshHydrostaticsOptions {
 // and is integrated exactly (edge-midpoint rule), so the result is exact for the polyhedron the
 // panels describe: for a smooth hull the error is the geometric one, O(h^2) in the panel size.
 // Waterplane area and moments come from the waterline polygon(s): the wet panels' edges lying in
-// the waterplane, chained, with Green's theorem.
+// the waterplane, chained, with Green's theorem; where a chain breaks off away from the centre
+// plane (an open transom), from the panels' fluxes -int (1, x, y, x^2, y^2) n_z dS instead.
 Hydrostatics hydrostatics_mesh(const SurfaceMesh& mesh, const FloatingPosition& position,
                                const MeshHydrostaticsOptions& options = {});
 

@@ -72,6 +72,28 @@ TEST(Hydrostatics, HalfBoxWithTheHalfFlagGivesTheSameTotals) {
   EXPECT_EQ(hh.open_waterline_chains, 1u);  // closed on y = 0
 }
 
+// A half box whose transom (the face x = 0) is missing, as an open-transom file's is: the
+// waterline breaks off at the transom, away from the centre plane, and the waterplane figures
+// come from the panels' fluxes, which are exact for the box. The waterline polygon, closed
+// straight back to its start, would have cut the waterplane in half.
+TEST(Hydrostatics, OpenTransomTakesTheWaterplaneFromTheFluxes) {
+  SurfaceMesh half = drop_centre_plane(test::box_mesh({0, 0, 0}, {2, 1, 1}, 4));
+  std::vector<Face> kept;
+  for (const Face& f : half.faces)
+    if (face_normal(half.positions, f).x > -0.5) kept.push_back(f);
+  half.faces = kept;
+  half.face_patch.assign(kept.size(), 0);
+  const Hydrostatics h = hydrostatics_mesh(half, {0.5, true});
+  EXPECT_TRUE(h.waterplane_from_fluxes);
+  EXPECT_NEAR(h.waterplane_area, 4.0, 1e-13);
+  EXPECT_NEAR(h.flotation_centre.x, 1.0, 1e-13);
+  EXPECT_NEAR(h.i_transverse, 2.0 * 8 / 12, 1e-13);
+  EXPECT_NEAR(h.i_longitudinal, 2.0 * 8 / 12, 1e-13);
+  // The closed half box keeps its polygon.
+  const SurfaceMesh closed = drop_centre_plane(test::box_mesh({0, 0, 0}, {2, 1, 1}, 4));
+  EXPECT_FALSE(hydrostatics_mesh(closed, {0.5, true}).waterplane_from_fluxes);
+}
+
 TEST(Hydrostatics, SphereVolumeConvergesAtSecondOrder) {
   // Expected order 2: the inscribed polyhedron's error is O(h^2) in the panel size.
   auto err = [](int n) {
