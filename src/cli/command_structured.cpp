@@ -190,6 +190,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         "%zu triangles\n",
         r.split_twisted, r.cap_quads, r.cap_triangles);
     std::printf("  relocation: %zu moves kept by the quality objective\n", r.quality_moves);
+    if (r.size_passes > 1) {
+      std::printf("  panel size matched to --panels in %zu passes (the first made %zu panels)\n",
+                  r.size_passes, r.first_pass_faces);
+    }
     if (r.rows_joined > 0) {
       std::printf(
           "  %zu strips between rows of different curve counts joined through the border (%zu "
@@ -279,6 +283,9 @@ void register_structured(CLI::App& app, const GlobalOptions& global, Action& act
   cmd->add_option("--panels", c->structured.target_panels,
                   "About this many panels when --size is not given (default 2000)")
       ->check(CLI::Range(std::size_t{4}, std::size_t{10'000'000}));
+  cmd->add_flag("--match-panels", c->structured.match_panels,
+                "Mesh again with the size scaled until the count is within 3% of --panels (at "
+                "most 3 passes; one pass overshoots by 0-40% where the rows turn)");
   cmd->add_option("--min-opposite-ratio", c->structured.min_opposite_ratio,
                   "A quad whose opposite sides differ more becomes two triangles (default 0.35)")
       ->check(CLI::Range(0.0, 1.0));

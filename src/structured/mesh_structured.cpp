@@ -17,6 +17,10 @@ namespace {
 
 using namespace structured;
 
+// --panels with match_panels: within 3% of the target, in at most three meshing passes.
+constexpr double kMatchTolerance = 0.03;
+constexpr std::size_t kMatchPasses = 3;
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -109,14 +113,16 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
 
 }  // namespace
 
-StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
-                               const EdgeAdjacency& adjacency, const HullQuery& query,
-                               const FeatureSet& features, const StructuredOptions& options) {
+namespace {
+
+StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surface,
+                         const EdgeAdjacency& adjacency, const HullQuery& query,
+                         const FeatureSet& features, const StructuredOptions& options,
+                         const Metric& metric) {
   using clock = std::chrono::steady_clock;
   StructuredMesh out;
   StructuredReport& rep = out.report;
   auto t = clock::now();
-  const Metric metric = make_metric(surface, options);
   rep.size = metric.size;
   const StationPlan plan = plan_stations(query, features, surface, metric, options);
   rep.stations = plan.x.size();
@@ -164,6 +170,35 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
     }
   }
   for (const Face& f : mesh.faces) ++(is_triangle(f) ? rep.triangles : rep.quads);
+  return out;
+}
+
+}  // namespace
+
+StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
+                               const EdgeAdjacency& adjacency, const HullQuery& query,
+                               const FeatureSet& features, const StructuredOptions& options) {
+  Metric metric = make_metric(surface, options);
+  StructuredMesh out = mesh_with(patches, surface, adjacency, query, features, options, metric);
+  const std::size_t first = out.mesh.face_count();
+  const bool from_count = !(options.size.x > 0 && options.size.y > 0 && options.size.z > 0);
+  std::size_t passes = 1;
+  while (options.match_panels && from_count && passes < kMatchPasses) {
+    const double ratio =
+        static_cast<double>(out.mesh.face_count()) / static_cast<double>(options.target_panels);
+    if (std::abs(ratio - 1) <= kMatchTolerance || !(ratio > 0)) break;
+    metric.size = metric.size * std::sqrt(ratio);
+    const StructuredReport before = out.report;
+    out = mesh_with(patches, surface, adjacency, query, features, options, metric);
+    // The stage times are of every pass.
+    out.report.seconds_plan += before.seconds_plan;
+    out.report.seconds_rows += before.seconds_rows;
+    out.report.seconds_grow += before.seconds_grow;
+    out.report.seconds_relax += before.seconds_relax;
+    ++passes;
+  }
+  out.report.size_passes = passes;
+  out.report.first_pass_faces = first;
   return out;
 }
 

@@ -60,6 +60,10 @@ struct StructuredOptions {
   double min_opposite_ratio = 0.35;
   double max_warp = 0.08;
   int relax_passes = 8;  // constrained smoothing passes (0: none)
+  // With the sizes from target_panels: mesh again, the sizes scaled by sqrt(count / target),
+  // until the count is within kMatchTolerance of the target (at most kMatchPasses in all). The
+  // rows add panels where they turn, so one pass overshoots by 0-40%.
+  bool match_panels = false;
 };
 
 // What one block became.
@@ -75,13 +79,15 @@ struct StructuredReport {
   Vec3d size;  // the panel sizes used, m
   std::size_t stations = 0, cut_stations = 0;
   std::size_t quads = 0, triangles = 0, cap_triangles = 0, cap_quads = 0;
-  std::size_t transoms = 0;        // ends capped through a transom's knuckle
-  std::size_t rows_joined = 0;     // strips between rows of different curve counts, joined
-  std::size_t curve_caps = 0;      // of them, pieces of hull capped inside their strip
-  std::size_t border_gaps = 0;     // slivers between row ends and the boundary, filled by fans
-  std::size_t split_twisted = 0;   // quads made into two triangles
-  std::size_t rows_unmatched = 0;  // strips whose rows could not be paired (left open)
-  std::size_t quality_moves = 0;   // node moves kept by the quality-driven relocation
+  std::size_t transoms = 0;          // ends capped through a transom's knuckle
+  std::size_t rows_joined = 0;       // strips between rows of different curve counts, joined
+  std::size_t curve_caps = 0;        // of them, pieces of hull capped inside their strip
+  std::size_t border_gaps = 0;       // slivers between row ends and the boundary, filled by fans
+  std::size_t split_twisted = 0;     // quads made into two triangles
+  std::size_t rows_unmatched = 0;    // strips whose rows could not be paired (left open)
+  std::size_t quality_moves = 0;     // node moves kept by the quality-driven relocation
+  std::size_t size_passes = 1;       // meshing passes (more than one with match_panels)
+  std::size_t first_pass_faces = 0;  // the first pass's panel count
   std::vector<BlockReport> blocks;
   double seconds_plan = 0, seconds_rows = 0, seconds_grow = 0, seconds_relax = 0;
 };

@@ -233,6 +233,27 @@ TEST(Structured, SameBytesWithOneTwoAndEightThreads) {
   }
 }
 
+// One pass overshoots --panels where the rows turn; match_panels meshes again with the size
+// scaled until the count is within 3% of the target.
+TEST(Structured, MatchPanelsLandsWithinThreePercentOfTheTarget) {
+  const auto w = wetted(HullKind::kRoundBilge, 24);
+  StructuredOptions o;
+  o.target_panels = 1500;
+  const StructuredMesh once = mesh(*w, o);
+  o.match_panels = true;
+  const StructuredMesh matched = mesh(*w, o);
+  const double first = static_cast<double>(once.mesh.face_count());
+  const double got = static_cast<double>(matched.mesh.face_count());
+  EXPECT_EQ(matched.report.first_pass_faces, once.mesh.face_count());
+  ASSERT_GT(first, 1.03 * 1500) << "the case must overshoot in one pass (it made 1,924)";
+  EXPECT_GT(matched.report.size_passes, 1u);
+  EXPECT_LE(std::abs(got / 1500 - 1), 0.03) << got << " after " << matched.report.size_passes;
+  // Sizes given directly are kept: one pass.
+  StructuredOptions sized = o;
+  sized.size = matched.report.size;
+  EXPECT_EQ(mesh(*w, sized).report.size_passes, 1u);
+}
+
 TEST(Structured, PanelSizesFollowTheUserBoxes) {
   const auto w = wetted(HullKind::kWigley, 4);
   StructuredOptions coarse;
