@@ -111,10 +111,8 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
   }
 }
 
-}  // namespace
-
-namespace {
-
+// One meshing pass at the given sizes: plan -> rows -> grow -> zip -> caps -> relax -> refine ->
+// orient.
 StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surface,
                          const EdgeAdjacency& adjacency, const HullQuery& query,
                          const FeatureSet& features, const StructuredOptions& options,
