@@ -91,6 +91,12 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                                                    kRowFineMin, kRowFineMax);
   PreparedHull ph;
   prepare_hull(pa, ph);
+  const bool mirror = !heeled && (c.symmetry == "full" || (c.symmetry == "auto" && !ph.file_half));
+  // --panels counts the panels written. A full hull meshed as its port half and mirrored gets
+  // half of them on each side, as from the unstructured mesher, which coarsens such a hull whole.
+  if (mirror && ph.centre_cut) {
+    c.structured.target_panels = std::max<std::size_t>(4, (c.structured.target_panels + 1) / 2);
+  }
   // The report's NURBS hydrostatics, beside the meshing.
   Hydrostatics nurbs_hydro;
   std::optional<BackgroundTask> nurbs_task;
@@ -128,7 +134,6 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   const SurfaceMesh* output = &panels;
   std::vector<std::array<Index, 2>> knuckle_edges = sm.knuckle_edges;
   std::optional<MirroredMesh> mirrored;
-  const bool mirror = !heeled && (c.symmetry == "full" || (c.symmetry == "auto" && !ph.file_half));
   if (mirror && is_half_hull(panels, ph.centre_tol)) {
     mirrored = mirror_half_hull(panels, ph.centre_tol);
     output = &mirrored->mesh;

@@ -704,17 +704,18 @@ TEST(CliStructured, StemAboveTheBulbIsCappedInsideItsStrip) {
 }
 
 // A full hull upright is meshed as its port half and mirrored: twice the half's panels, every
-// vertex with its mirror image, closed along the keel.
+// vertex with its mirror image, closed along the keel. --panels counts the panels written, so
+// the full hull at 1,600 is the half at 800, mirrored.
 TEST(CliStructured, FullHullIsMeshedAsAHalfAndMirrored) {
   const fs::path dir = test::scratch_dir("cli_structured_full");
   const fs::path igs = dir / "w.igs", half = dir / "half.obj", full = dir / "full.obj";
   ASSERT_EQ(test::run_hullmesh("-q generate wigley --patches 8 --full -o '" + igs.string() + "'")
                 .exit_code,
             0);
-  const std::string base = "structured '" + igs.string() + "' --panels 800 --draft 5 -o '";
-  const auto h = test::run_hullmesh(base + half.string() + "' --symmetry half");
+  const std::string base = "structured '" + igs.string() + "' --draft 5 -o '";
+  const auto h = test::run_hullmesh(base + half.string() + "' --panels 800 --symmetry half");
   ASSERT_EQ(h.exit_code, 0) << h.out;
-  const auto r = test::run_hullmesh(base + full.string() + "'");
+  const auto r = test::run_hullmesh(base + full.string() + "' --panels 1600");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("mirrored about y = 0"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("0 non-manifold edges"), std::string::npos) << r.out;
