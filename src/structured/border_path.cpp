@@ -81,13 +81,9 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
   return out;
 }
 
-namespace {
-
-// Of the two ways round the loop from a to b, the shorter whose every point has x in
-// [x_lo, x_hi]; empty if neither.
-std::vector<Vec3d> border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj, const Vec3d& a,
-                               const Vec3d& b, double x_lo, double x_hi, const Metric& metric,
-                               double tol) {
+std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
+                                        const Vec3d& a, const Vec3d& b, const Metric& metric,
+                                        double tol, double x_lo, double x_hi) {
   const LoopSpot sa = nearest_boundary_edge(surface, adj, a);
   const LoopSpot sb = nearest_boundary_edge(surface, adj, b);
   if (sa.loop != sb.loop || sa.distance > tol || sb.distance > tol) return {};
@@ -112,21 +108,6 @@ std::vector<Vec3d> border_path(const SurfaceMesh& surface, const EdgeAdjacency& 
     }
   }
   return best;
-}
-
-}  // namespace
-
-std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
-                                        const Vec3d& a, const Vec3d& b, const Metric& metric,
-                                        double tol) {
-  const double inf = std::numeric_limits<double>::infinity();
-  return border_path(surface, adj, a, b, -inf, inf, metric, tol);
-}
-
-std::vector<Vec3d> slab_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
-                                    const Vec3d& a, const Vec3d& b, double x_lo, double x_hi,
-                                    const Metric& metric, double tol) {
-  return border_path(surface, adj, a, b, x_lo, x_hi, metric, tol);
 }
 
 std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMesh& mesh,

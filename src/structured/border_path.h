@@ -28,15 +28,13 @@ std::vector<Index> loop_path(const std::vector<Index>& v, std::size_t ea, std::s
 // The surface's boundary from a to b (points on it, within tol of a boundary edge of one loop),
 // the shorter way round in the metric, as a polyline from a to b; empty when a and b do not lie
 // on one loop within tol.
+// With x_lo and x_hi, only a way round that stays between the planes x = x_lo and x = x_hi (the
+// slab between two stations) counts.
 std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
                                         const Vec3d& a, const Vec3d& b, const Metric& metric,
-                                        double tol);
-
-// The same, but only a way round that stays between the planes x = x_lo and x = x_hi (the slab
-// between two stations); the shorter if both do, empty if neither does.
-std::vector<Vec3d> slab_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,
-                                    const Vec3d& a, const Vec3d& b, double x_lo, double x_hi,
-                                    const Metric& metric, double tol);
+                                        double tol,
+                                        double x_lo = -std::numeric_limits<double>::infinity(),
+                                        double x_hi = std::numeric_limits<double>::infinity());
 
 // Metric arc-length fractions (0 to 1) of a chain of mesh nodes.
 std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMesh& mesh,

@@ -152,7 +152,6 @@ CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const F
     const std::size_t j = aft ? 0 : rows.size() - 1;
     const Row& row = rows[j];
     if (row.curves.size() != 1) {
-      ++counts.unmatched;
       counts.open[aft ? 0 : 1] = true;
       continue;
     }
@@ -160,7 +159,6 @@ CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const F
     const LoopSpot sa = nearest_boundary_edge(surface, adj, c.points.front());
     const LoopSpot sb = nearest_boundary_edge(surface, adj, c.points.back());
     if (sa.loop != sb.loop || sa.distance > tol || sb.distance > tol) {
-      ++counts.unmatched;
       counts.open[aft ? 0 : 1] = true;
       continue;
     }
@@ -183,7 +181,6 @@ CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const F
       }
     }
     if (best.empty() || best_score <= 0) {
-      ++counts.unmatched;
       counts.open[aft ? 0 : 1] = true;
       continue;
     }

@@ -11,7 +11,7 @@
 namespace hm::structured {
 
 struct CapCounts {
-  std::size_t quads = 0, triangles = 0, unmatched = 0;
+  std::size_t quads = 0, triangles = 0;
   std::array<bool, 2> open{false, false};  // the aft and the forward end left open
   std::size_t transoms = 0;  // ends closed through a transverse knuckle (a transom's edge)
   std::vector<std::array<Index, 2>> knuckle_edges;  // panel edges along those knuckles
@@ -21,7 +21,7 @@ struct CapCounts {
 // crosses the end region from one side of its boundary to the other (a transom's edge), the cap
 // is two strips: row to knuckle, and knuckle to the boundary beyond, so no panel straddles it.
 // An end whose row has more than one curve, or whose ends do not lie on one boundary loop of the
-// surface, is left open, flagged in open and counted in unmatched (join_rows tries it by groups).
+// surface, is left open and flagged in open (join_rows then tries it by groups).
 CapCounts cap_ends(const SurfaceMesh& surface, const EdgeAdjacency& adj, const FeatureSet& features,
                    std::span<const Row> rows, std::span<const RowNodes> nodes,
                    std::span<const std::vector<Index>> first_vertex, const Metric& metric,

@@ -214,7 +214,7 @@ class Joiner {
     const Vec3d from = mesh_.positions[last_node(j, c)];
     const Vec3d to = mesh_.positions[first_node(j, c + 1)];
     Link l;
-    l.points = slab_border_path(surface_, adj_, from, to, lo, hi, metric_, tol_);
+    l.points = shortest_border_path(surface_, adj_, from, to, metric_, tol_, lo, hi);
     if (l.points.empty()) return nullptr;
     for (const Vec3d& p : l.points) {
       l.x_lo = std::min(l.x_lo, p.x);
@@ -246,7 +246,7 @@ class Joiner {
   std::vector<Vec3d> cap_path(const Group& g, double lo, double hi) const {
     const Vec3d a = mesh_.positions[first_node(g.row, g.c0)];
     const Vec3d b = mesh_.positions[last_node(g.row, g.c1)];
-    return slab_border_path(surface_, adj_, a, b, lo, hi, metric_, tol_);
+    return shortest_border_path(surface_, adj_, a, b, metric_, tol_, lo, hi);
   }
 
   // The cap's chain: the group's two end nodes with new boundary nodes between them.

@@ -84,7 +84,7 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
   rep.transoms = caps.transoms;
   out.knuckle_edges.insert(out.knuckle_edges.end(), caps.knuckle_edges.begin(),
                            caps.knuckle_edges.end());
-  rep.rows_unmatched += caps.unmatched;
+  rep.rows_unmatched += (caps.open[0] ? 1 : 0) + (caps.open[1] ? 1 : 0);
   std::vector<std::size_t> unpaired;
   for (std::size_t j = 0; j < strips.size(); ++j)
     if (strips[j].unmatched) unpaired.push_back(j);
