@@ -1,23 +1,28 @@
-// The structured mesher over a size ladder: a generated 48-patch round-bilge half hull, cut at its
-// design draft, meshed by mesh_structured to about 2,000, 8,000 and 32,000 panels at 1 and 2
-// threads (items/s: output panels per second). The surface is prepared once per size, untimed, as
-// `hullmesh structured` prepares it: 20 fine triangles per panel (40,000 to 1,000,000),
-// tessellated, merged, cut at the draft, its features found and a HullQuery built on it. Then one
-// strip zip (zip_chains) on its own. After the runs, main() prints, from the runs just made, the
-// 1 -> 2 thread speed-up per size and whether both thread counts gave the same mesh (they must:
-// the mesher is documented as thread-count independent).
+// The structured mesher over a size ladder: a generated 48-patch round-bilge half hull cut at its
+// design draft, and (when ../shared/data/hulls holds them; HM_SHARED_DIR overrides ../shared)
+// ship_449_patches.iges and dtmb5415.iges cut at z = 0, meshed by mesh_structured with automatic
+// blocks to about 2,000, 8,000 and 32,000 panels at 1 and 2 threads (items/s: output panels per
+// second). Each surface is prepared once per size, untimed, as `hullmesh structured` prepares it:
+// 20 fine triangles per panel (40,000 to 1,000,000), tessellated, merged, cut at the waterline,
+// its features found and a HullQuery built on it. Then one strip zip (zip_chains) on its own.
+// After the runs, main() prints, from the runs just made, the 1 -> 2 thread speed-up per hull and
+// size and whether both thread counts gave the same mesh (they must: the mesher is documented as
+// thread-count independent).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "iges/read_iges.h"
 #include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
 #include "query/hull_query.h"
@@ -34,53 +39,71 @@ namespace {
 // As `hullmesh structured` sizes its internal surface (src/cli/command_structured.cpp).
 constexpr std::size_t kFinePerPanel = 20, kFineMin = 40'000, kFineMax = 1'000'000;
 
-// The wetted half hull, in metres, ship frame, keel at z = 0 (cut at z = draft).
+// A hull to mesh: its patches and the waterline it is cut at (m, its own frame).
+struct Source {
+  std::string name;
+  std::vector<Patch> patches;
+  double waterline_z = 0;
+};
+
+// Index 0: the generated hull; then the shared hulls that are present.
+const std::vector<Source>& sources() {
+  static const std::vector<Source> s = [] {
+    std::vector<Source> out;
+    HullSpec spec;
+    spec.kind = HullKind::kRoundBilge;
+    spec.patches = 48;
+    out.push_back({"generated round-bilge (48 patches)", generate_hull(spec).patches, spec.draft});
+    const char* env = std::getenv("HM_SHARED_DIR");
+    const std::filesystem::path dir =
+        std::filesystem::path(env ? env : "../shared") / "data" / "hulls";
+    for (const char* name : {"ship_449_patches.iges", "dtmb5415.iges"}) {
+      std::error_code ec;
+      const std::filesystem::path p = dir / name;
+      if (std::filesystem::is_regular_file(p, ec)) {
+        out.push_back({name, read_iges_file(p.string()).patches, 0.0});
+      }
+    }
+    return out;
+  }();
+  return s;
+}
+
+// The wetted half hull, in metres, in the source's frame (cut at its waterline).
 struct Wetted {
-  GeneratedHull hull;
   PlaneCut cut;
   EdgeAdjacency adj;  // of cut.mesh
   FeatureSet features;
   std::unique_ptr<HullQuery> query;
 };
 
-const GeneratedHull& hull() {
-  static const GeneratedHull h = [] {
-    HullSpec spec;
-    spec.kind = HullKind::kRoundBilge;
-    spec.patches = 48;
-    return generate_hull(spec);
-  }();
-  return h;
-}
-
-// Prepared once per panel count, at the machine's full parallelism.
-const Wetted& wetted(std::size_t panels) {
-  static std::map<std::size_t, std::unique_ptr<Wetted>> cache;
-  auto it = cache.find(panels);
+// Prepared once per source and panel count, at the machine's full parallelism.
+const Wetted& wetted(std::size_t source, std::size_t panels) {
+  static std::map<std::pair<std::size_t, std::size_t>, std::unique_ptr<Wetted>> cache;
+  auto it = cache.find({source, panels});
   if (it != cache.end()) return *it->second;
+  const Source& src = sources()[source];
   auto w = std::make_unique<Wetted>();
-  w->hull = hull();
-  const double draft = HullSpec{}.draft;
   TessellateOptions o;
-  o.edge_length = edge_length_for_triangles(w->hull.patches,
+  o.edge_length = edge_length_for_triangles(src.patches,
                                             std::clamp(kFinePerPanel * panels, kFineMin, kFineMax));
-  const Tessellation t = tessellate(w->hull.patches, o, silent_progress());
-  const MergedSurface merged = merge_patches(w->hull.patches, t.mesh, {}, silent_progress());
+  const Tessellation t = tessellate(src.patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(src.patches, t.mesh, {}, silent_progress());
   PlaneCutOptions co;
-  co.value = draft;
-  w->cut = cut_at_plane(w->hull.patches, merged.mesh, co);
+  co.value = src.waterline_z;
+  w->cut = cut_at_plane(src.patches, merged.mesh, co);
   w->adj = build_edge_adjacency(w->cut.mesh.faces, w->cut.mesh.vertex_count());
   FeatureOptions fo;
-  fo.waterline_z = draft;
-  w->features = find_features(w->cut.mesh, w->adj, w->hull.patches, fo);
-  w->query = std::make_unique<HullQuery>(w->hull.patches, w->cut.mesh);
-  return *cache.emplace(panels, std::move(w)).first->second;
+  fo.waterline_z = src.waterline_z;
+  w->features = find_features(w->cut.mesh, w->adj, src.patches, fo);
+  w->query = std::make_unique<HullQuery>(src.patches, w->cut.mesh);
+  return *cache.emplace(std::make_pair(source, panels), std::move(w)).first->second;
 }
 
-StructuredMesh run(const Wetted& w, std::size_t panels) {
+StructuredMesh run(const Source& src, const Wetted& w, std::size_t panels) {
   StructuredOptions o;
   o.target_panels = panels;
-  return mesh_structured(w.hull.patches, w.cut.mesh, w.adj, *w.query, w.features, o);
+  return mesh_structured(src.patches, w.cut.mesh, w.adj, *w.query, w.features, o);
 }
 
 // What each (panels, threads) run gave, for the summary: best wall time and the last mesh.
@@ -88,23 +111,31 @@ struct Seen {
   double best_s = 1e300;
   SurfaceMesh mesh;
 };
-std::map<std::pair<std::size_t, int>, Seen>& seen() {
-  static std::map<std::pair<std::size_t, int>, Seen> s;
+// Keyed by (source, target panels, threads).
+std::map<std::tuple<std::size_t, std::size_t, int>, Seen>& seen() {
+  static std::map<std::tuple<std::size_t, std::size_t, int>, Seen> s;
   return s;
 }
 
-// Args: target panels, threads.
+// Args: source (0 generated, then the shared hulls present), target panels, threads.
 void BM_MeshStructured(benchmark::State& state) {
-  const std::size_t target = static_cast<std::size_t>(state.range(0));
-  const int threads = static_cast<int>(state.range(1));
-  const Wetted& w = wetted(target);
+  const std::size_t source = static_cast<std::size_t>(state.range(0));
+  const std::size_t target = static_cast<std::size_t>(state.range(1));
+  const int threads = static_cast<int>(state.range(2));
+  if (source >= sources().size()) {
+    state.SkipWithError("shared hull not present");
+    return;
+  }
+  const Source& src = sources()[source];
+  const Wetted& w = wetted(source, target);
+  state.SetLabel(src.name);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(threads));
-  Seen& s = seen()[{target, threads}];
+  Seen& s = seen()[{source, target, threads}];
   StructuredMesh m;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    m = run(w, target);
+    m = run(src, w, target);
     s.best_s = std::min(
         s.best_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
@@ -117,8 +148,8 @@ void BM_MeshStructured(benchmark::State& state) {
   s.mesh = std::move(m.mesh);
 }
 BENCHMARK(BM_MeshStructured)
-    ->ArgNames({"panels", "threads"})
-    ->ArgsProduct({{2'000, 8'000, 32'000}, {1, 2}})
+    ->ArgNames({"hull", "panels", "threads"})
+    ->ArgsProduct({{0, 1, 2}, {2'000, 8'000, 32'000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
@@ -149,18 +180,20 @@ void BM_ZipChains(benchmark::State& state) {
 BENCHMARK(BM_ZipChains)->Arg(100)->Arg(10'000);
 
 void print_summary() {
-  std::printf(
-      "\nmesh_structured, generated round-bilge (48 patches) at its draft, best wall time:\n");
-  std::printf("  %8s %8s %10s %10s %9s %12s\n", "target", "panels", "1 thread", "2 threads",
-              "speed-up", "same mesh");
-  for (std::size_t target : {2'000u, 8'000u, 32'000u}) {
-    auto one = seen().find({target, 1}), two = seen().find({target, 2});
-    if (one == seen().end() || two == seen().end()) continue;
-    const SurfaceMesh &m1 = one->second.mesh, &m2 = two->second.mesh;
-    const bool same = m1.faces == m2.faces && m1.positions == m2.positions;
-    std::printf("  %8zu %8zu %9.3fs %9.3fs %8.2fx %12s\n", target, m1.face_count(),
-                one->second.best_s, two->second.best_s, one->second.best_s / two->second.best_s,
-                same ? "yes" : ("NO (" + std::to_string(m2.face_count()) + " panels)").c_str());
+  std::printf("\nmesh_structured at the waterline, automatic blocks, best wall time:\n");
+  std::printf("  %-36s %8s %8s %10s %10s %9s %12s\n", "hull", "target", "panels", "1 thread",
+              "2 threads", "speed-up", "same mesh");
+  for (std::size_t source = 0; source < sources().size(); ++source) {
+    for (std::size_t target : {2'000u, 8'000u, 32'000u}) {
+      auto one = seen().find({source, target, 1}), two = seen().find({source, target, 2});
+      if (one == seen().end() || two == seen().end()) continue;
+      const SurfaceMesh &m1 = one->second.mesh, &m2 = two->second.mesh;
+      const bool same = m1.faces == m2.faces && m1.positions == m2.positions;
+      std::printf("  %-36s %8zu %8zu %9.3fs %9.3fs %8.2fx %12s\n", sources()[source].name.c_str(),
+                  target, m1.face_count(), one->second.best_s, two->second.best_s,
+                  one->second.best_s / two->second.best_s,
+                  same ? "yes" : ("NO (" + std::to_string(m2.face_count()) + " panels)").c_str());
+    }
   }
 }
 
