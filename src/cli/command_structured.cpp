@@ -195,6 +195,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         "%zu triangles\n",
         r.split_twisted, r.cap_quads, r.cap_triangles);
     std::printf("  relocation: %zu moves kept by the quality objective\n", r.quality_moves);
+    if (r.edge_snaps > 0)
+      std::printf(
+          "  %zu border and knuckle nodes moved onto their patch edge curves (exact NURBS)\n",
+          r.edge_snaps);
     if (r.size_passes > 1) {
       std::printf("  panel size matched to --panels in %zu passes (the first made %zu panels)\n",
                   r.size_passes, r.first_pass_faces);

@@ -154,6 +154,8 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   rep.quality_moves = improve_nodes(rows, slots, mesh.faces, mesh.positions, options.relax_passes);
   rep.seconds_relax = seconds_since(t);
   refine_nodes(patches, rows, slots, 1e-10 * query.length_scale(), metric, mesh);
+  rep.edge_snaps = snap_to_edge_curves(patches, surface, features, rows, slots, out.knuckle_edges,
+                                       query.length_scale(), metric, mesh);
 
   // Provenance, then one orientation for all: that of the surface.
   mesh.face_patch.resize(mesh.faces.size());

@@ -86,6 +86,7 @@ struct StructuredReport {
   std::size_t split_twisted = 0;     // quads made into two triangles
   std::size_t rows_unmatched = 0;    // strips whose rows could not be paired (left open)
   std::size_t quality_moves = 0;     // node moves kept by the quality-driven relocation
+  std::size_t edge_snaps = 0;        // border and knuckle nodes moved onto a patch edge curve
   std::size_t size_passes = 1;       // meshing passes (more than one with match_panels)
   std::size_t first_pass_faces = 0;  // the first pass's panel count
   std::vector<BlockReport> blocks;

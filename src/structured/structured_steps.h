@@ -142,6 +142,17 @@ void refine_nodes(std::span<const Patch> patches, std::span<const Row> rows,
                   std::span<const NodeSlot> slots, double tol, const Metric& metric,
                   SurfaceMesh& mesh);
 
+// Boundary compliance on the exact curves: every node on the panel mesh's open border or on a
+// knuckle edge that lies on a fine boundary or knuckle segment running along an edge of a
+// patch's parameter domain moves onto that NURBS edge curve (a row node where the curve crosses
+// its station plane, a waterline node where it crosses the waterplane, any other node at the
+// nearest point). Returns the number of nodes moved. Parallel over nodes; deterministic.
+std::size_t snap_to_edge_curves(std::span<const Patch> patches, const SurfaceMesh& surface,
+                                const FeatureSet& features, std::span<const Row> rows,
+                                std::span<const NodeSlot> slots,
+                                std::span<const std::array<Index, 2>> knuckle_edges,
+                                double length_scale, const Metric& metric, SurfaceMesh& mesh);
+
 // --- strips ------------------------------------------------------------------------------
 struct StripFaces {
   std::vector<Face> faces;
