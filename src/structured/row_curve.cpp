@@ -14,6 +14,25 @@ Vec3d Metric::size_at(const Vec3d& p) const {
       return b.size;
     }
   }
+  // Outside every box: each box's size ramps to the global one over its transition zone, by
+  // kBoxGrading per metre from the box's faces, so that a panel beside a box's panels is at most
+  // about that share larger or smaller and the area-ratio rule holds across the faces. The first
+  // box whose zone holds p wins, as inside.
+  for (const SizeBox& b : boxes) {
+    const Vec3d out{std::max({b.lo.x - p.x, 0.0, p.x - b.hi.x}),
+                    std::max({b.lo.y - p.y, 0.0, p.y - b.hi.y}),
+                    std::max({b.lo.z - p.z, 0.0, p.z - b.hi.z})};
+    const double d = norm(out);
+    const Vec3d step = b.size - size;
+    const double widest = std::max({std::abs(step.x), std::abs(step.y), std::abs(step.z)});
+    if (!(d < widest / kBoxGrading)) continue;
+    auto ramp = [&](double box, double global) {
+      const double dir = global > box ? 1.0 : -1.0;
+      const double v = box + dir * kBoxGrading * d;
+      return dir > 0 ? std::min(v, global) : std::max(v, global);
+    };
+    return {ramp(b.size.x, size.x), ramp(b.size.y, size.y), ramp(b.size.z, size.z)};
+  }
   return size;
 }
 

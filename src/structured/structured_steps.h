@@ -22,11 +22,16 @@
 
 namespace hm::structured {
 
+// How fast a size box's panel size blends into the global size outside the box (m of size per m
+// of distance from the box).
+inline constexpr double kBoxGrading = 0.2;
+
 // Lengths measured in panel sizes: |d|_M = |(dx / size.x, dy / size.y, dz / size.z)|.
 struct Metric {
   Vec3d size{1, 1, 1};
   std::vector<SizeBox> boxes;
-  // The sizes that apply at p (the first box holding p, else the global size).
+  // The sizes that apply at p: the first box holding p; else, within a box's transition zone,
+  // its size blended towards the global one (kBoxGrading); else the global size.
   Vec3d size_at(const Vec3d& p) const;
   double length(const Vec3d& a, const Vec3d& b) const;
 };
