@@ -195,6 +195,11 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
         "%zu triangles\n",
         r.split_twisted, r.cap_quads, r.cap_triangles);
     std::printf("  relocation: %zu moves kept by the quality objective\n", r.quality_moves);
+    if (r.border_distorted > 0)
+      std::printf(
+          "  distorted border panels: %zu; repaired by removal %zu, by extension %zu, by a split "
+          "%zu\n",
+          r.border_distorted, r.border_removed, r.border_extended, r.border_split);
     if (r.edge_snaps > 0)
       std::printf(
           "  %zu border and knuckle nodes moved onto their patch edge curves (exact NURBS)\n",

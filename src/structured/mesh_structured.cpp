@@ -111,6 +111,34 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
   }
 }
 
+// Vertices no face uses (nodes the border repairs merged away) leave the arrays; the faces and
+// the knuckle edges are renumbered (vert_old2new).
+void drop_unused_vertices(StructuredMesh& out) {
+  SurfaceMesh& mesh = out.mesh;
+  const std::size_t nv = mesh.vertex_count();
+  std::vector<std::uint8_t> used(nv, 0);
+  for (const Face& f : mesh.faces)
+    for (int c = 0; c < corner_count(f); ++c) used[f[c]] = 1;
+  for (const auto& e : out.knuckle_edges) used[e[0]] = used[e[1]] = 1;
+  if (std::all_of(used.begin(), used.end(), [](std::uint8_t u) { return u != 0; })) return;
+  std::vector<Index> vert_old2new(nv, kInvalid);
+  Index next = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    vert_old2new[v] = next;
+    mesh.positions[next] = mesh.positions[v];
+    if (!mesh.vertex_patch.empty()) mesh.vertex_patch[next] = mesh.vertex_patch[v];
+    if (!mesh.vertex_uv.empty()) mesh.vertex_uv[next] = mesh.vertex_uv[v];
+    ++next;
+  }
+  mesh.positions.resize(next);
+  if (!mesh.vertex_patch.empty()) mesh.vertex_patch.resize(next);
+  if (!mesh.vertex_uv.empty()) mesh.vertex_uv.resize(next);
+  for (Face& f : mesh.faces)
+    for (int c = 0; c < corner_count(f); ++c) f[c] = vert_old2new[f[c]];
+  for (auto& e : out.knuckle_edges) e = {vert_old2new[e[0]], vert_old2new[e[1]]};
+}
+
 // One meshing pass at the given sizes: plan -> rows -> grow -> zip -> caps -> relax -> refine ->
 // orient.
 StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surface,
@@ -154,8 +182,17 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   rep.quality_moves = improve_nodes(rows, slots, mesh.faces, mesh.positions, options.relax_passes);
   rep.seconds_relax = seconds_since(t);
   refine_nodes(patches, rows, slots, 1e-10 * query.length_scale(), metric, mesh);
+  if (options.repair_border_panels) {
+    const BorderRepairCounts b = repair_border_panels(query, slots, out.knuckle_edges, mesh);
+    rep.border_distorted = b.distorted;
+    rep.border_removed = b.removed;
+    rep.border_extended = b.extended;
+    rep.border_split = b.split;
+  }
   rep.edge_snaps = snap_to_edge_curves(patches, surface, features, rows, slots, out.knuckle_edges,
                                        query.length_scale(), metric, mesh);
+
+  drop_unused_vertices(out);
 
   // Provenance, then one orientation for all: that of the surface.
   mesh.face_patch.resize(mesh.faces.size());

@@ -60,6 +60,8 @@ struct StructuredOptions {
   double min_opposite_ratio = 0.35;
   double max_warp = 0.08;
   int relax_passes = 8;  // constrained smoothing passes (0: none)
+  // The paper's three border-panel repairs, chosen per distorted border panel by quality.
+  bool repair_border_panels = true;
   // With the sizes from target_panels: mesh again, the sizes scaled by sqrt(count / target),
   // until the count is within kMatchTolerance of the target (at most kMatchPasses in all). The
   // rows add panels where they turn, so one pass overshoots by 0-40%.
@@ -79,14 +81,16 @@ struct StructuredReport {
   Vec3d size;  // the panel sizes used, m
   std::size_t stations = 0, cut_stations = 0;
   std::size_t quads = 0, triangles = 0, cap_triangles = 0, cap_quads = 0;
-  std::size_t transoms = 0;          // ends capped through a transom's knuckle
-  std::size_t rows_joined = 0;       // strips between rows of different curve counts, joined
-  std::size_t curve_caps = 0;        // of them, pieces of hull capped inside their strip
-  std::size_t border_gaps = 0;       // slivers between row ends and the boundary, filled by fans
-  std::size_t split_twisted = 0;     // quads made into two triangles
-  std::size_t rows_unmatched = 0;    // strips whose rows could not be paired (left open)
-  std::size_t quality_moves = 0;     // node moves kept by the quality-driven relocation
-  std::size_t edge_snaps = 0;        // border and knuckle nodes moved onto a patch edge curve
+  std::size_t transoms = 0;        // ends capped through a transom's knuckle
+  std::size_t rows_joined = 0;     // strips between rows of different curve counts, joined
+  std::size_t curve_caps = 0;      // of them, pieces of hull capped inside their strip
+  std::size_t border_gaps = 0;     // slivers between row ends and the boundary, filled by fans
+  std::size_t split_twisted = 0;   // quads made into two triangles
+  std::size_t rows_unmatched = 0;  // strips whose rows could not be paired (left open)
+  std::size_t quality_moves = 0;   // node moves kept by the quality-driven relocation
+  std::size_t edge_snaps = 0;      // border and knuckle nodes moved onto a patch edge curve
+  // Distorted border panels, and how many each repair took (the rest were best left).
+  std::size_t border_distorted = 0, border_removed = 0, border_extended = 0, border_split = 0;
   std::size_t size_passes = 1;       // meshing passes (more than one with match_panels)
   std::size_t first_pass_faces = 0;  // the first pass's panel count
   std::vector<BlockReport> blocks;

@@ -147,6 +147,19 @@ void refine_nodes(std::span<const Patch> patches, std::span<const Row> rows,
                   std::span<const NodeSlot> slots, double tol, const Metric& metric,
                   SurfaceMesh& mesh);
 
+// The paper's three repairs of distorted border panels (a quad on a block border that breaks the
+// side-ratio or area-ratio rule), chosen per panel by the quality each yields: remove it and
+// extend its inner neighbour (its inner side's free nodes merge into its border side's), extend
+// it and shrink the neighbour (those nodes move towards the neighbour's far side, onto the
+// NURBS), or split it into two triangles. Serial in face order. Removed faces are dropped;
+// merged nodes stay in the arrays, used by no face.
+struct BorderRepairCounts {
+  std::size_t distorted = 0, removed = 0, extended = 0, split = 0;
+};
+BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const NodeSlot> slots,
+                                        std::span<const std::array<Index, 2>> knuckle_edges,
+                                        SurfaceMesh& mesh);
+
 // Boundary compliance on the exact curves: every node on the panel mesh's open border or on a
 // knuckle edge that lies on a fine boundary or knuckle segment running along an edge of a
 // patch's parameter domain moves onto that NURBS edge curve (a row node where the curve crosses

@@ -1,0 +1,482 @@
+// The paper's three repairs of distorted border panels, chosen per panel by the quality each
+// yields. A border panel is a quad with a side on a block border (the face across that side
+// belongs to another block: a cut station, a lateral plane, the caps at the hull's ends); it is
+// distorted when it breaks a panel rule (quad side ratio 4, neighbour area ratio 2). Its inner
+// side is the opposite one, shared with its inner neighbour N. The repairs:
+//   1. remove the panel and extend N: the inner side's two nodes merge into the border side's
+//      (the panel vanishes, the panels beside it along the border become triangles);
+//   2. extend the panel and shrink N: the inner side's nodes move towards N's far side (by 15%
+//      or 30% of the way), onto the NURBS;
+//   3. split the panel into two triangles (along either diagonal).
+// Each candidate is scored by the panels failing a rule among those it changes and the ones beside
+// them, then by the worst rule value, over its limit, of the panels it changes (as the relocation
+// scores a move); the best is kept when it beats the panel as it stands. Only free nodes move or
+// merge: not a border row's, a breakpoint's, a cap's, a boundary's or a knuckle's.
+//
+// collect (distorted border quads, in face order) -> score (every candidate against the mesh as
+// the earlier repairs left it) -> apply the best -> drop the removed faces. Serial and in face
+// order, so deterministic.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "mesh/adjacency.h"
+#include "query/hull_query.h"
+#include "structured/structured_steps.h"
+
+namespace hm::structured {
+namespace {
+
+// The yardsticks of the relocation (relax_nodes.cpp): a little inside the rules' limits.
+constexpr double kSideTarget = 3.8, kAreaTarget = 1.9;
+// A panel is distorted past these (the rules themselves).
+constexpr double kSideLimit = 4, kAreaLimit = 2;
+// A boundary node may merge along the boundary only where it turns by less than this (degrees):
+// elsewhere it is a corner of the hull's outline.
+constexpr double kStraightDeg = 20;
+// How far along N the inner side moves (repair 2).
+constexpr double kExtendSteps[] = {0.15, 0.3};
+
+double side_ratio(std::span<const Vec3d> p, const Face& f) {
+  const int n = corner_count(f);
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (int c = 0; c < n; ++c) {
+    const double l = norm(p[f[(c + 1) % n]] - p[f[c]]);
+    lo = std::min(lo, l);
+    hi = std::max(hi, l);
+  }
+  return lo > 0 ? hi / lo : std::numeric_limits<double>::infinity();
+}
+
+// The mesh as the repairs change it: faces (kInvalid in slot 0: removed), vertex -> faces, and
+// positions. Small local edits; queries read it as it stands.
+class Editable {
+ public:
+  Editable(std::vector<Face>& faces, std::vector<Vec3d>& positions)
+      : faces_(faces), positions_(positions), around_(positions.size()) {
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      for (int c = 0; c < corner_count(faces[f]); ++c)
+        around_[faces[f][c]].insert(static_cast<Index>(f));
+  }
+
+  const Face& face(Index f) const { return faces_[f]; }
+  bool removed(Index f) const { return faces_[f][0] == kInvalid; }
+  const std::set<Index>& around(Index v) const { return around_[v]; }
+  const Vec3d& position(Index v) const { return positions_[v]; }
+  std::span<const Vec3d> positions() const { return positions_; }
+
+  // The face other than f that has the side a-b; kInvalid when none (a free side).
+  Index across(Index f, Index a, Index b) const {
+    for (Index g : around_[a]) {
+      if (g == f || removed(g)) continue;
+      const Face& h = faces_[g];
+      const int n = corner_count(h);
+      for (int c = 0; c < n; ++c) {
+        const Index x = h[c], y = h[(c + 1) % n];
+        if ((x == a && y == b) || (x == b && y == a)) return g;
+      }
+    }
+    return kInvalid;
+  }
+
+  // The worst rule value, over its yardstick, of the faces in `core` and their neighbours' area
+  // ratios.
+  double worst(const std::set<Index>& core) const {
+    double w = 0;
+    for (Index f : core) {
+      if (removed(f)) continue;
+      const Face& h = faces_[f];
+      const double a = face_area(positions_, h);
+      if (!(a > 0)) return std::numeric_limits<double>::infinity();
+      if (!is_triangle(h)) w = std::max(w, side_ratio(positions_, h) / kSideTarget);
+      const int n = corner_count(h);
+      for (int c = 0; c < n; ++c) {
+        const Index g = across(f, h[c], h[(c + 1) % n]);
+        if (g == kInvalid) continue;
+        const double b = face_area(positions_, faces_[g]);
+        const double r = std::min(a, b) > 0 ? std::max(a, b) / std::min(a, b)
+                                            : std::numeric_limits<double>::infinity();
+        w = std::max(w, r / kAreaTarget);
+      }
+    }
+    return w;
+  }
+
+  // A candidate's score: the panels failing a rule among `core` and the faces beside them (the
+  // rule shares are what panel codes are judged by), then the worst rule value over `core`.
+  struct Score {
+    std::size_t fails = 0;
+    double worst = 0;
+    bool better_than(const Score& o) const {
+      return fails != o.fails ? fails < o.fails : worst < o.worst - 1e-9;
+    }
+  };
+  Score score(const std::set<Index>& core) const {
+    Score sc;
+    sc.worst = worst(core);
+    std::set<Index> near = core;
+    for (Index f : core) {
+      if (removed(f)) continue;
+      const Face& h = faces_[f];
+      const int n = corner_count(h);
+      for (int c = 0; c < n; ++c) {
+        const Index g = across(f, h[c], h[(c + 1) % n]);
+        if (g != kInvalid) near.insert(g);
+      }
+    }
+    for (Index f : near) {
+      if (removed(f)) continue;
+      double side = 0, area = 0;
+      rules(f, side, area);
+      sc.fails += side > kSideLimit || area > kAreaLimit;
+    }
+    return sc;
+  }
+
+  // The quad side ratio (1 for a triangle) and the largest area ratio to a neighbour of face f.
+  void rules(Index f, double& side, double& area) const {
+    const Face& h = faces_[f];
+    side = is_triangle(h) ? 1 : side_ratio(positions_, h);
+    area = 1;
+    const double a = face_area(positions_, h);
+    const int n = corner_count(h);
+    for (int c = 0; c < n; ++c) {
+      const Index g = across(f, h[c], h[(c + 1) % n]);
+      if (g == kInvalid) continue;
+      const double b = face_area(positions_, faces_[g]);
+      area = std::max(area, std::min(a, b) > 0 ? std::max(a, b) / std::min(a, b)
+                                               : std::numeric_limits<double>::infinity());
+    }
+  }
+
+  // No face in `core` repeats a corner, every side of them has at most two faces, and no two
+  // faces have the same corners.
+  bool manifold(const std::set<Index>& core) const {
+    for (Index f : core) {
+      if (removed(f)) continue;
+      const Face& h = faces_[f];
+      const int n = corner_count(h);
+      // A merge that brings two opposite corners of a quad together folds it.
+      for (int c = 0; c < n; ++c)
+        for (int d = c + 1; d < n; ++d)
+          if (h[c] == h[d]) return false;
+      for (int c = 0; c < n; ++c) {
+        const Index a = h[c], b = h[(c + 1) % n];
+        int users = 0;
+        for (Index g : around_[a]) {
+          if (removed(g)) continue;
+          const Face& k = faces_[g];
+          const int m = corner_count(k);
+          bool same_corners = g != f && m == n;
+          for (int i = 0; i < m; ++i) {
+            const Index x = k[i], y = k[(i + 1) % m];
+            users += (x == a && y == b) || (x == b && y == a);
+            same_corners = same_corners && std::find(h.begin(), h.begin() + n, x) != h.begin() + n;
+          }
+          if (same_corners) return false;
+        }
+        if (users > 2) return false;
+      }
+    }
+    return true;
+  }
+
+  Index add_face(const Face& h) {
+    faces_.push_back(h);
+    const Index f = static_cast<Index>(faces_.size() - 1);
+    for (int c = 0; c < corner_count(h); ++c) around_[h[c]].insert(f);
+    return f;
+  }
+  void pop_face() {
+    const Index f = static_cast<Index>(faces_.size() - 1);
+    set_face(f, {kInvalid, kInvalid, kInvalid, kInvalid});
+    faces_.pop_back();
+  }
+
+  void set_face(Index f, const Face& h) {
+    const Face old = faces_[f];
+    if (old[0] != kInvalid)
+      for (int c = 0; c < corner_count(old); ++c) around_[old[c]].erase(f);
+    faces_[f] = h;
+    if (h[0] != kInvalid)
+      for (int c = 0; c < corner_count(h); ++c) around_[h[c]].insert(f);
+  }
+  void set_position(Index v, const Vec3d& p) { positions_[v] = p; }
+
+ private:
+  std::vector<Face>& faces_;
+  std::vector<Vec3d>& positions_;
+  std::vector<std::set<Index>> around_;
+};
+
+// Face h with vertex `from` renamed `to`, and a repeated corner dropped (a quad that loses a side
+// becomes a triangle; one that loses two, or a triangle that loses one, is removed).
+Face renamed(const Face& h, Index from, Index to) {
+  Index c[4];
+  int n = 0;
+  for (int k = 0; k < corner_count(h); ++k) {
+    const Index v = h[k] == from ? to : h[k];
+    if (n > 0 && c[n - 1] == v) continue;
+    c[n++] = v;
+  }
+  if (n > 1 && c[n - 1] == c[0]) --n;
+  if (n == 4) return {c[0], c[1], c[2], c[3]};
+  if (n == 3) return {c[0], c[1], c[2], kInvalid};
+  return {kInvalid, kInvalid, kInvalid, kInvalid};
+}
+
+}  // namespace
+
+BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const NodeSlot> slots,
+                                        std::span<const std::array<Index, 2>> knuckle_edges,
+                                        SurfaceMesh& mesh) {
+  BorderRepairCounts counts;
+  const std::size_t nv = mesh.vertex_count();
+  // Nodes that may move or merge away: free row nodes off every boundary and knuckle.
+  std::vector<std::uint8_t> movable(nv, 0), on_knuckle(nv, 0);
+  for (std::size_t v = 0; v < nv && v < slots.size(); ++v)
+    movable[v] = !slots[v].fixed && slots[v].row != kInvalid;
+  // The hull's boundary edges: a row's end node on one may still merge along it (below).
+  std::set<std::pair<Index, Index>> free_edges;
+  std::vector<std::uint8_t> straight(nv, 0);  // on the boundary, which runs on straight through it
+  {
+    const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, nv);
+    for (const BoundaryLoop& l : adj.boundary_loops) {
+      const std::size_t n = l.vertices.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const Index a = l.vertices[(k + n - 1) % n], v = l.vertices[k], b = l.vertices[(k + 1) % n];
+        movable[v] = 0;
+        free_edges.insert({std::min(v, b), std::max(v, b)});
+        const Vec3d da = mesh.positions[a] - mesh.positions[v];
+        const Vec3d db = mesh.positions[b] - mesh.positions[v];
+        const double c = dot(da, db) / std::max(norm(da) * norm(db), 1e-300);
+        straight[v] = c < -std::cos(kStraightDeg * M_PI / 180);
+      }
+    }
+  }
+  for (const auto& e : knuckle_edges) {
+    movable[e[0]] = movable[e[1]] = 0;
+    on_knuckle[e[0]] = on_knuckle[e[1]] = 1;
+  }
+
+  Editable m(mesh.faces, mesh.positions);
+  const Index nf = static_cast<Index>(mesh.faces.size());
+  std::vector<std::uint8_t> merged(nv, 0), done(nf, 0);
+
+  // collect: a distorted border quad, with its border side b0-b1, inner side i1-i0 (i0 beside
+  // b0) and inner neighbour n.
+  struct Panel {
+    Index f, b0, b1, i0, i1, n;
+  };
+  auto border_panel = [&](Index f, Panel& out) {
+    if (f >= nf || done[f] || m.removed(f) || is_triangle(m.face(f))) return false;
+    const Face p = m.face(f);
+    for (int c = 0; c < 4; ++c) {
+      const Index g = m.across(f, p[c], p[(c + 1) % 4]);
+      if (g == kInvalid || mesh.face_block[g] == mesh.face_block[f]) continue;
+      double side = 0, area = 0;
+      m.rules(f, side, area);
+      if (side <= kSideLimit && area <= kAreaLimit) return false;
+      out = {f, p[c], p[(c + 1) % 4], p[(c + 3) % 4], p[(c + 2) % 4], kInvalid};
+      out.n = m.across(f, out.i1, out.i0);
+      return true;
+    }
+    return false;
+  };
+
+  for (Index f0 = 0; f0 < nf; ++f0) {
+    Panel first;
+    if (!border_panel(f0, first)) continue;
+    // A run: the distorted border panels beside one another along the border (sharing a side
+    // b-i), repaired together, as a lone panel's repair would only move its distortion to the
+    // panels beside it.
+    std::vector<Panel> run{first};
+    done[f0] = 1;
+    for (std::size_t k = 0; k < run.size(); ++k) {
+      for (auto [b, i] : {std::pair{run[k].b0, run[k].i0}, std::pair{run[k].b1, run[k].i1}}) {
+        const Index g = m.across(run[k].f, b, i);
+        Panel next;
+        if (g != kInvalid && border_panel(g, next)) {
+          done[g] = 1;
+          run.push_back(next);
+        }
+      }
+    }
+    counts.distorted += run.size();
+
+    // The inner nodes, each with its border partner and the far node it moves towards.
+    std::map<Index, std::pair<Index, Vec3d>> inner;  // i -> (b, sum of far positions)
+    std::map<Index, int> far_count;
+    // Inner nodes that may not move (on the hull's boundary at the run's ends, say) stay.
+    bool partners_agree = true, inner_free = true, any_free = false;
+    for (const Panel& p : run) {
+      for (auto [i, b, other] : {std::tuple{p.i0, p.b0, p.i1}, std::tuple{p.i1, p.b1, p.i0}}) {
+        auto [it, fresh] = inner.emplace(i, std::pair{b, Vec3d{0, 0, 0}});
+        partners_agree = partners_agree && it->second.first == b;
+        any_free = any_free || (movable[i] && !merged[i]);
+        if (p.n == kInvalid || mesh.face_block[p.n] != mesh.face_block[p.f]) {
+          inner_free = false;
+          continue;
+        }
+        // n's corner beside i that is not on the shared side.
+        const Face nf4 = m.face(p.n);
+        const int cn = corner_count(nf4);
+        const int k = static_cast<int>(std::find(nf4.begin(), nf4.begin() + cn, i) - nf4.begin());
+        if (k >= cn) {
+          inner_free = false;
+          continue;
+        }
+        const Index a = nf4[(k + 1) % cn], c = nf4[(k + cn - 1) % cn];
+        it->second.second += m.position(a == other ? c : a);
+        ++far_count[i];
+      }
+    }
+    std::set<Index> scored;
+    for (const Panel& p : run)
+      for (Index v : {p.b0, p.b1, p.i0, p.i1})
+        for (Index g : m.around(v)) scored.insert(g);
+    Editable::Score best = m.score(scored);
+    int best_kind = 0;  // 0: leave it; 1, 2, 3: the repair of that number
+    double best_step = 0;
+    std::vector<Face> best_split;
+
+    // score 3: every panel of the run split along the diagonal that scores better.
+    std::vector<Face> quads;
+    for (const Panel& p : run) quads.push_back(m.face(p.f));
+    {
+      std::vector<Face> chosen;
+      std::vector<Index> added;
+      std::set<Index> sc = scored;
+      for (const Panel& p : run) {
+        const Face q = m.face(p.f);
+        Face pick0{}, pick1{};
+        Editable::Score pick{std::numeric_limits<std::size_t>::max(), 0};
+        for (int d = 0; d < 2; ++d) {
+          const Face t0 =
+              d == 0 ? Face{q[0], q[1], q[2], kInvalid} : Face{q[0], q[1], q[3], kInvalid};
+          const Face t1 =
+              d == 0 ? Face{q[0], q[2], q[3], kInvalid} : Face{q[1], q[2], q[3], kInvalid};
+          m.set_face(p.f, t0);
+          const Index t = m.add_face(t1);
+          std::set<Index> local = sc;
+          local.insert(t);
+          const Editable::Score s3 = m.score(local);
+          m.pop_face();
+          if (s3.better_than(pick)) {
+            pick = s3;
+            pick0 = t0;
+            pick1 = t1;
+          }
+        }
+        // Keep this panel split while the next ones are chosen.
+        m.set_face(p.f, pick0);
+        added.push_back(m.add_face(pick1));
+        sc.insert(added.back());
+        chosen.push_back(pick0);
+        chosen.push_back(pick1);
+      }
+      const Editable::Score s3 = m.score(sc);
+      for (std::size_t k = added.size(); k-- > 0;) m.pop_face();
+      for (std::size_t k = 0; k < run.size(); ++k) m.set_face(run[k].f, quads[k]);
+      // A split costs quads: it must leave fewer panels failing, not only a milder worst one.
+      if (s3.fails < best.fails) {
+        best = s3;
+        best_kind = 3;
+        best_split = chosen;
+      }
+    }
+    auto free_node = [&](Index i) { return movable[i] && !merged[i]; };
+    // A removal may also merge a row's end node on the hull's boundary into its partner when the
+    // side between them is a boundary edge: the boundary loses a node a fraction of a panel from
+    // the next, and keeps its line (the keel, the waterline).
+    auto mergeable = [&](Index i, Index b) {
+      if (merged[i] || on_knuckle[i]) return false;
+      if (movable[i]) return true;
+      return i < slots.size() && slots[i].row != kInvalid && straight[i] &&
+             free_edges.count({std::min(i, b), std::max(i, b)}) > 0;
+    };
+    if (inner_free && any_free && partners_agree) {
+      // score 2: the inner nodes towards the far side, onto the NURBS.
+      std::map<Index, Vec3d> start;
+      for (const auto& [i, bf] : inner)
+        if (free_node(i)) start[i] = m.position(i);
+      for (double step : kExtendSteps) {
+        for (const auto& [i, p0] : start) {
+          const Vec3d far = inner[i].second / static_cast<double>(far_count[i]);
+          m.set_position(i, query.closest_point(p0 + (far - p0) * step).point);
+        }
+        const Editable::Score s2 = m.score(scored);
+        if (s2.better_than(best)) {
+          best = s2;
+          best_kind = 2;
+          best_step = step;
+        }
+      }
+      for (const auto& [i, p0] : start) m.set_position(i, p0);
+
+      // score 1: the inner nodes merge into their border partners.
+      std::map<Index, Face> was;
+      for (Index g : scored) was[g] = m.face(g);
+      for (const auto& [i, bf] : inner) {
+        if (!mergeable(i, bf.first)) continue;
+        const std::set<Index> faces_of(m.around(i).begin(), m.around(i).end());
+        for (Index g : faces_of) m.set_face(g, renamed(m.face(g), i, bf.first));
+      }
+      Editable::Score s1{std::numeric_limits<std::size_t>::max(), 0};
+      if (m.manifold(scored)) s1 = m.score(scored);
+      for (const auto& [g, h] : was) m.set_face(g, h);
+      if (s1.better_than(best)) {
+        best = s1;
+        best_kind = 1;
+      }
+    }
+
+    // apply the best.
+    if (best_kind == 3) {
+      for (std::size_t k = 0; k < run.size(); ++k) {
+        m.set_face(run[k].f, best_split[2 * k]);
+        m.add_face(best_split[2 * k + 1]);
+        mesh.face_block.push_back(mesh.face_block[run[k].f]);
+      }
+      counts.split += run.size();
+    } else if (best_kind == 2) {
+      for (const auto& [i, bf] : inner) {
+        if (!free_node(i)) continue;
+        const Vec3d far = bf.second / static_cast<double>(far_count[i]);
+        const ClosestPoint cp =
+            query.closest_point(m.position(i) + (far - m.position(i)) * best_step);
+        m.set_position(i, cp.point);
+        mesh.vertex_patch[i] = cp.patch;
+        mesh.vertex_uv[i] = cp.uv;
+      }
+      counts.extended += run.size();
+    } else if (best_kind == 1) {
+      std::vector<Index> to_merge;
+      for (const auto& [i, bf] : inner)
+        if (mergeable(i, bf.first)) to_merge.push_back(i);
+      for (Index i : to_merge) {
+        const std::set<Index> faces_of(m.around(i).begin(), m.around(i).end());
+        for (Index g : faces_of) m.set_face(g, renamed(m.face(g), i, inner[i].first));
+        merged[i] = 1;
+      }
+      counts.removed += run.size();
+    }
+  }
+
+  // Removed faces go now; the merged nodes stay in the arrays, used by no face, until
+  // drop_unused_vertices (the steps between still index the vertices as the rows placed them).
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (mesh.faces[f][0] == kInvalid) continue;
+    mesh.faces[kept] = mesh.faces[f];
+    mesh.face_block[kept] = mesh.face_block[f];
+    ++kept;
+  }
+  mesh.faces.resize(kept);
+  mesh.face_block.resize(kept);
+  return counts;
+}
+
+}  // namespace hm::structured
