@@ -101,9 +101,7 @@ namespace {
 
 // Share of a node's gap to its row neighbours that one trial move spans.
 constexpr double kTrialSteps[] = {-0.3, -0.15, 0.15, 0.3};
-// The objective's yardsticks: a little inside the rules' limits (4 and 2), so that a panel sitting
-// exactly on a limit (a count-change triangle has half its neighbour quad's area) is pushed in.
-constexpr double kSideTarget = 3.8, kAreaTarget = 1.9;
+}  // namespace
 
 double side_ratio(std::span<const Vec3d> p, const Face& f) {
   const int n = corner_count(f);
@@ -115,8 +113,6 @@ double side_ratio(std::span<const Vec3d> p, const Face& f) {
   }
   return lo > 0 ? hi / lo : std::numeric_limits<double>::infinity();
 }
-
-}  // namespace
 
 std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
                           std::span<const Face> faces, std::vector<Vec3d>& positions, int passes) {

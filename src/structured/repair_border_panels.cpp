@@ -29,26 +29,14 @@
 namespace hm::structured {
 namespace {
 
-// The yardsticks of the relocation (relax_nodes.cpp): a little inside the rules' limits.
-constexpr double kSideTarget = 3.8, kAreaTarget = 1.9;
-// A panel is distorted past these (the rules themselves).
+// A panel is distorted past these (the rules themselves; the scores use kSideTarget and
+// kAreaTarget, a little inside them).
 constexpr double kSideLimit = 4, kAreaLimit = 2;
 // A boundary node may merge along the boundary only where it turns by less than this (degrees):
 // elsewhere it is a corner of the hull's outline.
 constexpr double kStraightDeg = 20;
 // How far along N the inner side moves (repair 2).
 constexpr double kExtendSteps[] = {0.15, 0.3};
-
-double side_ratio(std::span<const Vec3d> p, const Face& f) {
-  const int n = corner_count(f);
-  double lo = std::numeric_limits<double>::infinity(), hi = 0;
-  for (int c = 0; c < n; ++c) {
-    const double l = norm(p[f[(c + 1) % n]] - p[f[c]]);
-    lo = std::min(lo, l);
-    hi = std::max(hi, l);
-  }
-  return lo > 0 ? hi / lo : std::numeric_limits<double>::infinity();
-}
 
 // The mesh as the repairs change it: faces (kInvalid in slot 0: removed), vertex -> faces, and
 // positions. Small local edits; queries read it as it stands.

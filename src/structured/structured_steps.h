@@ -192,6 +192,13 @@ void commit_strips(std::span<const Row> rows, std::span<const StripFaces> strips
                    StructuredMesh& out);
 
 // --- relax --------------------------------------------------------------------------------
+// The relocation's and the border repairs' yardsticks for the panel rules (quad side ratio 4,
+// neighbour area ratio 2): a little inside the limits, so that a panel sitting exactly on one
+// (a count-change triangle has half its neighbour quad's area) is pushed in.
+inline constexpr double kSideTarget = 3.8, kAreaTarget = 1.9;
+// Longest over shortest side of face f; infinite for a side of zero length.
+double side_ratio(std::span<const Vec3d> positions, const Face& f);
+
 // Point relocation: every free node (not a breakpoint, not on a border row) moves along its row
 // curve towards the mean of its mesh neighbours. rows/nodes give each vertex's curve.
 void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span<const Face> faces,

@@ -10,18 +10,15 @@
 
 #include "io/read_mesh.h"
 #include "mesh/surface_mesh.h"
+#include "support/test_json.h"
 #include "support/test_support.h"
 
 namespace hm {
 namespace {
 
 namespace fs = std::filesystem;
+using test::quality_json;
 using test::run_hullmesh;
-
-nlohmann::json quality_json(const fs::path& mesh) {
-  const auto q = run_hullmesh("quality --json '" + mesh.string() + "'");
-  return nlohmann::json::parse(q.out.substr(q.out.find('{')));
-}
 
 struct Case {
   const char* name;

@@ -23,6 +23,7 @@
 #include "unstructured/cut_at_plane.h"
 #include "unstructured/features.h"
 #include "unstructured/merge.h"
+#include "wetted_surface.h"
 
 namespace hm {
 namespace {
@@ -80,39 +81,14 @@ double distance_to_domain_edges(const NurbsSurface& s, const Vec3d& q) {
   return best;
 }
 
-struct Prepared {
-  std::vector<Patch> patches;
-  Tessellation tess;
-  MergedSurface merged;
-  PlaneCut cut;
-  EdgeAdjacency adj;
-  FeatureSet features;
-  std::unique_ptr<HullQuery> query;
-};
+using Prepared = test::WettedSurface;
 
 // As `hullmesh structured` prepares a hull: about 20 fine triangles per panel, merged, cut at the
 // waterline z (NaN: not cut), features and query.
 std::unique_ptr<Prepared> prepare(std::vector<Patch> patches, double waterline_z,
                                   std::size_t panels) {
-  auto w = std::make_unique<Prepared>();
-  w->patches = std::move(patches);
-  TessellateOptions o;
-  o.edge_length = edge_length_for_triangles(w->patches, 20 * panels);
-  w->tess = tessellate(w->patches, o, silent_progress());
-  w->merged = merge_patches(w->patches, w->tess.mesh, {}, silent_progress());
-  if (std::isnan(waterline_z)) {
-    w->cut.mesh = w->merged.mesh;  // the whole file, up to its deck
-  } else {
-    PlaneCutOptions co;
-    co.value = waterline_z;
-    w->cut = cut_at_plane(w->patches, w->merged.mesh, co);
-  }
-  w->adj = build_edge_adjacency(w->cut.mesh.faces, w->cut.mesh.vertex_count());
-  FeatureOptions fo;
-  fo.waterline_z = waterline_z;
-  w->features = find_features(w->cut.mesh, w->adj, w->patches, fo);
-  w->query = std::make_unique<HullQuery>(w->patches, w->cut.mesh);
-  return w;
+  const double edge = edge_length_for_triangles(patches, 20 * panels);
+  return test::prepare_surface(std::move(patches), waterline_z, edge);
 }
 
 struct Compliance {

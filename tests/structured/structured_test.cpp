@@ -21,44 +21,23 @@
 #include "unstructured/features.h"
 #include "unstructured/measure_deviation.h"
 #include "unstructured/merge.h"
+#include "wetted_surface.h"
 
 namespace hm {
 namespace {
 
-struct Wetted {
-  GeneratedHull hull;
-  Tessellation tess;
-  MergedSurface merged;
-  PlaneCut cut;
-  EdgeAdjacency adj;
-  FeatureSet features;
-  std::unique_ptr<HullQuery> query;
-};
+using Wetted = test::WettedSurface;
 
 // A generated half hull tessellated at L / 200, merged, cut at its design draft, with its features.
 std::unique_ptr<Wetted> wetted(HullKind kind, int patches) {
-  auto w = std::make_unique<Wetted>();
   HullSpec spec;
   spec.kind = kind;
   spec.patches = patches;
-  w->hull = generate_hull(spec);
-  TessellateOptions o;
-  o.edge_length = 0.5;
-  w->tess = tessellate(w->hull.patches, o, silent_progress());
-  w->merged = merge_patches(w->hull.patches, w->tess.mesh, {}, silent_progress());
-  PlaneCutOptions co;
-  co.value = spec.draft;
-  w->cut = cut_at_plane(w->hull.patches, w->merged.mesh, co);
-  w->adj = build_edge_adjacency(w->cut.mesh.faces, w->cut.mesh.vertex_count());
-  FeatureOptions fo;
-  fo.waterline_z = spec.draft;
-  w->features = find_features(w->cut.mesh, w->adj, w->hull.patches, fo);
-  w->query = std::make_unique<HullQuery>(w->hull.patches, w->cut.mesh);
-  return w;
+  return test::prepare_surface(generate_hull(spec).patches, spec.draft, 0.5);
 }
 
 StructuredMesh mesh(const Wetted& w, const StructuredOptions& o) {
-  return mesh_structured(w.hull.patches, w.cut.mesh, w.adj, *w.query, w.features, o);
+  return mesh_structured(w.patches, w.cut.mesh, w.adj, *w.query, w.features, o);
 }
 
 QualityReport quality(const StructuredMesh& m, double waterline) {
@@ -89,7 +68,7 @@ TEST(Structured, WigleyIsClosedMostlyQuadsAndMeetsTheSideRatioRule) {
   ASSERT_EQ(m.mesh.face_patch.size(), m.mesh.face_count());
   ASSERT_EQ(m.mesh.face_block.size(), m.mesh.face_count());
   for (std::size_t f = 0; f < m.mesh.face_count(); ++f) {
-    EXPECT_LT(m.mesh.face_patch[f], w->hull.patches.size());
+    EXPECT_LT(m.mesh.face_patch[f], w->patches.size());
     EXPECT_LT(m.mesh.face_block[f], m.report.blocks.size());
   }
 }

@@ -9,5 +9,7 @@ namespace hm::test {
 
 // A JSON file's value; a discarded value (is_discarded()) when it is missing or not JSON.
 nlohmann::json read_json(const std::filesystem::path& path);
+// `hullmesh quality --json MESH`'s report; a discarded value when the command printed no JSON.
+nlohmann::json quality_json(const std::filesystem::path& mesh);
 
 }  // namespace hm::test

@@ -51,6 +51,13 @@ nlohmann::json read_json(const std::filesystem::path& path) {
   return nlohmann::json::parse(in, nullptr, false);
 }
 
+nlohmann::json quality_json(const fs::path& mesh) {
+  const RunResult r = run_hullmesh("quality --json " + q(mesh));
+  const std::size_t at = r.out.find('{');
+  if (at == std::string::npos) return nlohmann::json::value_t::discarded;
+  return nlohmann::json::parse(r.out.substr(at), nullptr, false);
+}
+
 int spawn_hullmesh(const std::string& args, const fs::path& log) {
   const std::string to = log.empty() ? std::string("/dev/null") : q(log);
   const std::string cmd = "exec " + q(hullmesh_exe()) + " " + args + " > " + to + " 2>&1";
