@@ -1,5 +1,5 @@
 // The structured mesher's driver: plan -> rows -> grow -> zip -> caps -> relax -> refine ->
-// orient -> report.
+// repair border panels -> onto the edge curves -> orient -> report.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -140,7 +140,7 @@ void drop_unused_vertices(StructuredMesh& out) {
 }
 
 // One meshing pass at the given sizes: plan -> rows -> grow -> zip -> caps -> relax -> refine ->
-// orient.
+// repair border panels -> onto the edge curves -> orient.
 StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surface,
                          const EdgeAdjacency& adjacency, const HullQuery& query,
                          const FeatureSet& features, const StructuredOptions& options,
@@ -193,6 +193,17 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
                                        query.length_scale(), metric, mesh);
 
   drop_unused_vertices(out);
+  // The blocks' panel counts as the repairs left them.
+  std::map<Index, BlockReport*> block_of;
+  for (BlockReport& b : rep.blocks) {
+    b.quads = b.triangles = 0;
+    block_of[b.id] = &b;
+  }
+  for (std::size_t f = 0; f < mesh.faces.size() && f < mesh.face_block.size(); ++f) {
+    const auto it = block_of.find(mesh.face_block[f]);
+    if (it != block_of.end())
+      ++(is_triangle(mesh.faces[f]) ? it->second->triangles : it->second->quads);
+  }
 
   // Provenance, then one orientation for all: that of the surface.
   mesh.face_patch.resize(mesh.faces.size());

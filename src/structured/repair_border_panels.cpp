@@ -1,21 +1,26 @@
-// The paper's three repairs of distorted border panels, chosen per panel by the quality each
-// yields. A border panel is a quad with a side on a block border (the face across that side
-// belongs to another block: a cut station, a lateral plane, the caps at the hull's ends); it is
+// The paper's three repairs of distorted border panels, chosen by the quality each yields. A
+// border panel is a quad with a side on a block border (the face across that side belongs to
+// another block: a cut station, a lateral plane or knuckle, the caps at the hull's ends); it is
 // distorted when it breaks a panel rule (quad side ratio 4, neighbour area ratio 2). Its inner
-// side is the opposite one, shared with its inner neighbour N. The repairs:
-//   1. remove the panel and extend N: the inner side's two nodes merge into the border side's
-//      (the panel vanishes, the panels beside it along the border become triangles);
-//   2. extend the panel and shrink N: the inner side's nodes move towards N's far side (by 15%
-//      or 30% of the way), onto the NURBS;
-//   3. split the panel into two triangles (along either diagonal).
-// Each candidate is scored by the panels failing a rule among those it changes and the ones beside
-// them, then by the worst rule value, over its limit, of the panels it changes (as the relocation
-// scores a move); the best is kept when it beats the panel as it stands. Only free nodes move or
-// merge: not a border row's, a breakpoint's, a cap's, a boundary's or a knuckle's.
+// side is the opposite one, shared with its inner neighbour N. Distorted border panels side by
+// side along one border (sharing a side from the border inwards) form a run and are repaired
+// together: a lone panel's repair would only move its distortion to the panels beside it. The
+// repairs of a run:
+//   1. remove the panels and extend their N: the inner sides' free nodes merge into their
+//      partners on the border (a row's end on the hull's boundary too, where the side between
+//      them is a boundary edge and the boundary runs straight through it);
+//   2. extend the panels and shrink their N: the inner sides' free nodes move towards N's far
+//      side (by 15% or 30% of the way), onto the NURBS;
+//   3. split each panel into two triangles (along the diagonal that scores better).
+// A candidate is scored by the panels failing a rule among those it changes and the ones beside
+// them, then by the worst rule value, over its yardstick, of the panels it changes (as the
+// relocation scores a move); the best is kept when it beats the run as it stands, a split only
+// when fewer panels fail (it costs quads). Free nodes are row nodes off the border rows,
+// breakpoints, caps, knuckles and the boundary.
 //
-// collect (distorted border quads, in face order) -> score (every candidate against the mesh as
-// the earlier repairs left it) -> apply the best -> drop the removed faces. Serial and in face
-// order, so deterministic.
+// collect (a distorted border quad, in face order, and its run) -> score (every candidate against
+// the mesh as the earlier repairs left it) -> apply the best -> drop the removed faces. Serial
+// and in face order, so deterministic.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,7 +58,6 @@ class Editable {
   bool removed(Index f) const { return faces_[f][0] == kInvalid; }
   const std::set<Index>& around(Index v) const { return around_[v]; }
   const Vec3d& position(Index v) const { return positions_[v]; }
-  std::span<const Vec3d> positions() const { return positions_; }
 
   // The face other than f that has the side a-b; kInvalid when none (a free side).
   Index across(Index f, Index a, Index b) const {

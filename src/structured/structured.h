@@ -60,7 +60,7 @@ struct StructuredOptions {
   double min_opposite_ratio = 0.35;
   double max_warp = 0.08;
   int relax_passes = 8;  // constrained smoothing passes (0: none)
-  // The paper's three border-panel repairs, chosen per distorted border panel by quality.
+  // The paper's three border-panel repairs, chosen per run of distorted border panels by quality.
   bool repair_border_panels = true;
   // With the sizes from target_panels: mesh again, the sizes scaled by sqrt(count / target),
   // until the count is within kMatchTolerance of the target (at most kMatchPasses in all). The
@@ -103,10 +103,11 @@ struct StructuredMesh {
   StructuredReport report;
 };
 
-// plan -> rows -> grow blocks (in parallel) -> zip -> caps -> relax -> orient. surface: the
-// merged hull (triangles, vertex_patch and vertex_uv filled), adjacency and features of it;
-// query: built on the same surface. Deterministic and thread-count independent. Throws
-// UsageError for impossible options and GeometryError when the hull has no rows to grow.
+// plan -> rows -> grow blocks (in parallel) -> zip -> caps -> relax -> repair border panels ->
+// onto the edge curves -> orient. surface: the merged hull (triangles, vertex_patch and vertex_uv
+// filled), adjacency and features of it; query: built on the same surface. Deterministic and
+// thread-count independent. Throws UsageError for impossible options and GeometryError when the
+// hull has no rows to grow.
 StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
                                const EdgeAdjacency& adjacency, const HullQuery& query,
                                const FeatureSet& features, const StructuredOptions& options);
