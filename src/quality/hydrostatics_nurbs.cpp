@@ -7,6 +7,7 @@
 
 #include "core/bbox.h"
 #include "core/parallel.h"
+#include "kernels/bspline_basis.h"
 #include "nurbs/gauss_legendre.h"
 #include "quality/hydrostatic_sums.h"
 #include "quality/hydrostatics.h"
@@ -91,11 +92,9 @@ class PatchIntegrator {
   // either side (also whenever a weight is not positive, or the net is not a B-spline net).
   Wetness wetness(const Cell& c) const {
     if (!positive_weights_) return Wetness::kCrossed;
+    // The span holding the cell's low corner; points span - degree .. span act on it.
     auto first_point = [](const std::vector<double>& knots, int degree, int count, double t) {
-      // The span [knots[k], knots[k + 1]) holding t; points k - degree .. k act on it.
-      const auto it = std::upper_bound(knots.begin(), knots.end(), t);
-      const int k = std::clamp(static_cast<int>(it - knots.begin()) - 1, degree, count - 1);
-      return k - degree;
+      return kernel::find_span(degree, count, knots.data(), t) - degree;
     };
     const int iu = first_point(s_.knots_u, s_.degree_u, s_.count_u, c.u0);
     const int iv = first_point(s_.knots_v, s_.degree_v, s_.count_v, c.v0);

@@ -103,9 +103,6 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
     br.upper = "stations " + std::to_string(0) + " and " + std::to_string(rows.size() - 1);
     br.x0 = box.lo.x;
     br.x1 = box.hi.x;
-    for (std::size_t f = before_caps; f < mesh.faces.size(); ++f) {
-      ++(is_triangle(mesh.faces[f]) ? br.triangles : br.quads);
-    }
     mesh.face_block.resize(mesh.faces.size(), br.id);
     rep.blocks.push_back(br);
   }
@@ -193,16 +190,10 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
                                        query.length_scale(), metric, mesh);
 
   drop_unused_vertices(out);
-  // The blocks' panel counts as the repairs left them.
-  std::map<Index, BlockReport*> block_of;
-  for (BlockReport& b : rep.blocks) {
-    b.quads = b.triangles = 0;
-    block_of[b.id] = &b;
-  }
-  for (std::size_t f = 0; f < mesh.faces.size() && f < mesh.face_block.size(); ++f) {
-    const auto it = block_of.find(mesh.face_block[f]);
-    if (it != block_of.end())
-      ++(is_triangle(mesh.faces[f]) ? it->second->triangles : it->second->quads);
+  // The blocks' panel counts, as the repairs left them (a block's id is its place in the list).
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    BlockReport& b = rep.blocks[mesh.face_block[f]];
+    ++(is_triangle(mesh.faces[f]) ? b.triangles : b.quads);
   }
 
   // Provenance, then one orientation for all: that of the surface.

@@ -79,19 +79,10 @@ class Editable {
     double w = 0;
     for (Index f : core) {
       if (removed(f)) continue;
-      const Face& h = faces_[f];
-      const double a = face_area(positions_, h);
-      if (!(a > 0)) return std::numeric_limits<double>::infinity();
-      if (!is_triangle(h)) w = std::max(w, side_ratio(positions_, h) / kSideTarget);
-      const int n = corner_count(h);
-      for (int c = 0; c < n; ++c) {
-        const Index g = across(f, h[c], h[(c + 1) % n]);
-        if (g == kInvalid) continue;
-        const double b = face_area(positions_, faces_[g]);
-        const double r = std::min(a, b) > 0 ? std::max(a, b) / std::min(a, b)
-                                            : std::numeric_limits<double>::infinity();
-        w = std::max(w, r / kAreaTarget);
-      }
+      if (!(face_area(positions_, faces_[f]) > 0)) return std::numeric_limits<double>::infinity();
+      double side = 0, area = 0;
+      rules(f, side, area);
+      w = std::max({w, side / kSideTarget, area / kAreaTarget});
     }
     return w;
   }

@@ -147,12 +147,12 @@ void refine_nodes(std::span<const Patch> patches, std::span<const Row> rows,
                   std::span<const NodeSlot> slots, double tol, const Metric& metric,
                   SurfaceMesh& mesh);
 
-// The paper's three repairs of distorted border panels (a quad on a block border that breaks the
-// side-ratio or area-ratio rule), chosen per panel by the quality each yields: remove it and
-// extend its inner neighbour (its inner side's free nodes merge into its border side's), extend
-// it and shrink the neighbour (those nodes move towards the neighbour's far side, onto the
-// NURBS), or split it into two triangles. Serial in face order. Removed faces are dropped;
-// merged nodes stay in the arrays, used by no face.
+// The paper's three repairs of distorted border panels (quads on a block border that break the
+// side-ratio or area-ratio rule), for each run of them side by side along a border, whichever
+// leaves the fewest panels failing: remove them and extend their inner neighbours (the inner
+// sides' free nodes merge into the border's), extend them and shrink the neighbours (those nodes
+// move towards the neighbours' far side, onto the NURBS), or split them into triangles. Serial
+// in face order. Removed faces are dropped; merged nodes stay in the arrays, used by no face.
 struct BorderRepairCounts {
   std::size_t distorted = 0, removed = 0, extended = 0, split = 0;
 };

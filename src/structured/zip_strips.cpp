@@ -159,7 +159,6 @@ void commit_strips(std::span<const Row> rows, std::span<const StripFaces> strips
       BlockReport& br = rep.blocks[id];
       br.x0 = std::min(br.x0, rows[j].x);
       br.x1 = std::max(br.x1, rows[j + 1].x);
-      ++(is_triangle(sf.faces[f]) ? br.triangles : br.quads);
       br.seconds += sf.seconds / static_cast<double>(sf.faces.size());
       mesh.faces.push_back(sf.faces[f]);
       mesh.face_block.push_back(id);
