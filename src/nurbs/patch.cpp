@@ -27,7 +27,6 @@ namespace {
 
 constexpr double kAreaLoopTolerance = 1e-7;  // chord tolerance in the unit-scaled domain
 constexpr int kMaxAdaptiveDepth = 6;
-constexpr double kAdaptiveRelTol = 1e-11;
 constexpr int kMaxTrimDepth = 4;  // crossed cells: at most this many levels below a span cell
 
 struct Cell {
@@ -119,8 +118,9 @@ std::pair<std::size_t, std::size_t> inner_breaks(const std::vector<double>& b, d
 
 class AreaIntegrator {
  public:
-  explicit AreaIntegrator(const NurbsSurface& s)
-      : arrays_(surface_arrays(s)),
+  AreaIntegrator(const NurbsSurface& s, double rel_tol)
+      : rel_tol_(rel_tol),
+        arrays_(surface_arrays(s)),
         breaks_u_(span_breaks_u(s)),
         breaks_v_(span_breaks_v(s)),
         hi_(gauss_legendre_01(std::clamp(std::max(s.degree_u, s.degree_v) + 4, 6, 24))),
@@ -166,11 +166,11 @@ class AreaIntegrator {
   }
 
   // Adaptive Gauss over a cell inside one knot span: the high-order rule is accepted when the
-  // lower-order one agrees with it to 1e-11 (of the cell's value or of its share of the patch).
+  // lower-order one agrees with it to rel_tol_ (of the cell's value or of its share of the patch).
   double span_cell(const Cell& c, int depth = 0) const {
     const double hi = gauss(c, hi_);
     const double lo = gauss(c, lo_);
-    const double budget = kAdaptiveRelTol * std::max(std::abs(hi), density_ * c.area());
+    const double budget = rel_tol_ * std::max(std::abs(hi), density_ * c.area());
     if (depth >= kMaxAdaptiveDepth || std::abs(hi - lo) <= budget) return hi;
     const double um = 0.5 * (c.u0 + c.u1);
     const double vm = 0.5 * (c.v0 + c.v1);
@@ -285,7 +285,7 @@ class AreaIntegrator {
         hi += p.sign * fan(p.pts, c, lo_p);
         lo += p.sign * lo_p;
       }
-      const double budget = kAdaptiveRelTol * std::max(std::abs(hi), density_ * c.area());
+      const double budget = rel_tol_ * std::max(std::abs(hi), density_ * c.area());
       if (span_depth >= kMaxTrimDepth || std::abs(hi - lo) <= budget) {
         return (w == 0 ? 0.0 : w * span_cell(c)) + hi;
       }
@@ -308,6 +308,7 @@ class AreaIntegrator {
   }
 
  private:
+  double rel_tol_;
   kernel::SurfaceArrays arrays_;
   std::vector<double> breaks_u_;
   std::vector<double> breaks_v_;
@@ -369,19 +370,24 @@ std::vector<std::vector<Vec2d>> sample_loops_uv(const Patch& p, double tol_uv) {
   return out;
 }
 
-double patch_area(const Patch& p) {
+double patch_area(const Patch& p, double rel_tol) {
+  if (!(rel_tol > 0) || !(rel_tol < 1))
+    throw UsageError("patch area: the tolerance must lie in (0, 1)");
   const NurbsSurface& s = p.surface;
-  const AreaIntegrator integrator(s);
+  const AreaIntegrator integrator(s, rel_tol);
   const Cell domain{s.u0, s.u1, s.v0, s.v1};
   if (p.loops.empty()) return integrator.untrimmed(domain);
 
   // Loops sampled in the domain scaled to the unit square, so one tolerance serves both directions.
+  // A polygon within t of its loop misses about t times the loop's length of the unit square:
+  // well under rel_tol of a patch that fills a fair share of its domain.
+  const double loop_tol = std::max(kAreaLoopTolerance, 0.1 * rel_tol);
   const double su = 1.0 / (s.u1 - s.u0);
   const double sv = 1.0 / (s.v1 - s.v0);
   std::vector<std::vector<Vec2d>> loops;
   bool has_outer = false;
   for (const TrimLoop& loop : p.loops) {
-    loops.push_back(sample_loop(loop, kAreaLoopTolerance, s.u0, s.v0, su, sv));
+    loops.push_back(sample_loop(loop, loop_tol, s.u0, s.v0, su, sv));
     has_outer = has_outer || loop.outer;
   }
   // Holes without an outer loop: the domain boundary is the outer loop.

@@ -46,8 +46,12 @@ struct Patch {
 std::vector<std::vector<Vec2d>> sample_loops_uv(const Patch& p, double tol_uv);
 
 // Area of the patch's surface (m^2), inside its loops, by Gauss-Legendre quadrature over the knot
-// spans (adaptively split where a trim loop crosses a cell).
-double patch_area(const Patch& p);
+// spans (adaptively split where a trim loop crosses a cell). A cell is accepted when rules of two
+// orders agree to rel_tol of its value (or of its share of the patch): the default is as exact
+// as double allows; kAreaEstimateTol is for sizes derived from the area, at a fraction of the cost.
+inline constexpr double kAreaExactTol = 1e-11;
+inline constexpr double kAreaEstimateTol = 1e-5;
+double patch_area(const Patch& p, double rel_tol = kAreaExactTol);
 
 // Bounding box of the surface over its whole parameter domain (trims ignored), from a grid of
 // 4 samples per knot span and direction: tight to the surface, unlike the control net's box,

@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "core/error.h"
 #include "nurbs/nurbs_surface.h"
 #include "nurbs/patch.h"
 #include "nurbs_test_shapes.h"
@@ -196,6 +197,22 @@ TEST(PatchArea, TrimmedSquareWithCircularHole) {
   Patch holed = curved;
   holed.loops = {square_loop(0.31, 0.22, 0.69, 0.65, false)};
   EXPECT_NEAR(patch_area(holed) / (full - sub_area), 1.0, 1e-10);
+}
+
+// The estimate the tessellation sizes its edges from: within its tolerance of the exact area on a
+// pole, a trimmed hole and a curved patch with a hole across its spans.
+TEST(PatchArea, EstimateIsWithinItsTolerance) {
+  const double r = 3.0;
+  const Patch octant = plain(test::sphere_octant(r));
+  EXPECT_NEAR(patch_area(octant, kAreaEstimateTol) / (4 * kPi * r * r / 8), 1.0, kAreaEstimateTol);
+  Patch plate = plain(test::flat_rectangle(6.0, 6.0));
+  plate.loops = {square_loop(0, 0, 1, 1, true), circle_loop(0.5, 0.5, 0.3)};
+  EXPECT_NEAR(patch_area(plate, kAreaEstimateTol) / patch_area(plate), 1.0, kAreaEstimateTol);
+  Patch holed = plain(test::random_bicubic(4));
+  holed.loops = {square_loop(0.31, 0.22, 0.69, 0.65, false)};
+  EXPECT_NEAR(patch_area(holed, kAreaEstimateTol) / patch_area(holed), 1.0, kAreaEstimateTol);
+  EXPECT_THROW(patch_area(holed, 0.0), UsageError);
+  EXPECT_THROW(patch_area(holed, 1.0), UsageError);
 }
 
 TEST(Patch, SampleLoopsChainsCurvesWithoutDuplicateJoints) {
