@@ -200,28 +200,36 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
 }
 
 // The faces that may cover any vertex of a patch with a covered seed (the covered regions grow
-// over those patches only): of lower-numbered patches whose bounding box, grown by `margin`,
-// meets that patch's. Vertices are kept as they are.
+// over those patches only): faces of lower-numbered patches whose bounding box, grown by
+// `margin` (the reach of every search made with them), meets that patch's. Taking whole patches
+// instead gave kcs a query over 10,000 faces for two covered seeds. Vertices are kept as they
+// are.
 SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
                         std::span<const PatchId> seed_cover, std::size_t patch_count,
                         double margin) {
-  const std::vector<BBox3d> box = patch_boxes(m, patch_count, 0);
-  const auto meet = [&](const BBox3d& a, const BBox3d& b) {
-    return a.lo.x <= b.hi.x + margin && b.lo.x <= a.hi.x + margin && a.lo.y <= b.hi.y + margin &&
-           b.lo.y <= a.hi.y + margin && a.lo.z <= b.hi.z + margin && b.lo.z <= a.hi.z + margin;
-  };
-  std::vector<std::uint8_t> grows(patch_count, 0), needed(patch_count, 0);
+  const std::vector<BBox3d> box = patch_boxes(m, patch_count, margin);
+  std::vector<std::uint8_t> grows(patch_count, 0);
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (seed_cover[i] != kInvalid) grows[m.vertex_patch[candidates[i]]] = 1;
   }
+  std::vector<PatchId> growing;  // ascending
   for (std::size_t p = 0; p < patch_count; ++p) {
-    if (!grows[p] || box[p].empty()) continue;
-    for (std::size_t q = 0; q < p; ++q) {
-      if (!needed[q] && !box[q].empty() && meet(box[q], box[p])) needed[q] = 1;
-    }
+    if (grows[p] && !box[p].empty()) growing.push_back(PatchId(p));
   }
-  std::vector<std::uint8_t> keep(m.face_count());
-  for (std::size_t f = 0; f < m.face_count(); ++f) keep[f] = needed[m.face_patch[f]];
+  std::vector<std::uint8_t> keep(m.face_count(), 0);
+  parallel_for(0, m.face_count(), [&](std::size_t f) {
+    const PatchId q = m.face_patch[f];
+    BBox3d fb;
+    for (int k = 0; k < 3; ++k) fb.add(m.positions[m.faces[f][k]]);
+    for (auto it = std::upper_bound(growing.begin(), growing.end(), q); it != growing.end(); ++it) {
+      const BBox3d& b = box[*it];
+      if (fb.lo.x <= b.hi.x && b.lo.x <= fb.hi.x && fb.lo.y <= b.hi.y && b.lo.y <= fb.hi.y &&
+          fb.lo.z <= b.hi.z && b.lo.z <= fb.hi.z) {
+        keep[f] = 1;
+        return;
+      }
+    }
+  });
   return faces_kept(m, keep);
 }
 
@@ -280,6 +288,9 @@ void split_edges_off(Work& w, std::vector<PatchId>& cover, const OnLower& on_low
   const std::size_t faces = m.face_count();
   for (std::size_t f = 0; f < faces; ++f) {
     const Face t = m.faces[f];
+    // A split edge has both ends covered: most faces have no covered corner (the searches below
+    // cost 3 ms over kcs's 41,000 faces).
+    if (cover[t[0]] == kInvalid && cover[t[1]] == kInvalid && cover[t[2]] == kInvalid) continue;
     std::array<Index, 3> e;  // midpoint of edge t[c] -> t[c + 1], or kInvalid
     int n = 0;
     for (int c = 0; c < 3; ++c) n += (e[c] = mid_of(t[c], t[(c + 1) % 3])) != kInvalid;
