@@ -1,7 +1,8 @@
 // Hull queries on a generated Wigley hull triangulated on fine grids (the scene is built here, so
 // the benchmark does not depend on the tessellator): 1 million random rays, 1 million
-// closest-point queries, 1,000 plane sections, and the BVH section against a brute-force loop
-// over every triangle, on a ladder of scene sizes, at 1 and 2 threads. Items are rays, queries or
+// closest-point queries, 1,000 plane sections, the BVH section against a brute-force loop over
+// every triangle, and the search for faces through faces, on a ladder of scene sizes, at 1 and 2
+// threads. Items are rays, queries or
 // sections. After the table, a summary checks the goals (BVH > 10x brute force on the
 // ~400,000-triangle scene).
 #include <benchmark/benchmark.h>
@@ -17,6 +18,7 @@
 
 #include "core/parallel.h"
 #include "nurbs/generate_hull.h"
+#include "query/find_self_intersections.h"
 #include "query/hull_query.h"
 
 namespace {
@@ -181,6 +183,23 @@ void BM_SectionsBruteForce(benchmark::State& state) {
 BENCHMARK(BM_SectionsBruteForce)
     ->ArgNames({"grid", "threads", "refine"})
     ->ArgsProduct({{20, 40, 80, 160}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Faces through other faces (query/find_self_intersections.h, which every meshing command runs on
+// the merged surface and on its panels): the box-pair kernel's grid and the exact decisions,
+// on the same ladder. Items are triangles.
+void BM_SelfIntersections(benchmark::State& state) {
+  const BenchScene& s = scene(static_cast<int>(state.range(0)));
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, state.range(1));
+  const double tol = 1e-7 * s.query->bbox().extent().x;
+  for (auto _ : state) benchmark::DoNotOptimize(find_self_intersections(s.mesh, tol));
+  state.SetItemsProcessed(state.iterations() * s.mesh.faces.size());
+  state.counters["triangles"] = static_cast<double>(s.mesh.faces.size());
+}
+BENCHMARK(BM_SelfIntersections)
+    ->ArgNames({"grid", "threads"})
+    ->ArgsProduct({{20, 40, 80, 160}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

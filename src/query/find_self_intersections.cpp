@@ -1,20 +1,16 @@
-// collect triangles (local frame) -> candidate pairs from rtcCollide -> decide each pair in
-// double -> sort and count the crossing face pairs.
+// collect triangles (local frame) -> candidate pairs from their boxes, each decided in double as
+// it is found -> the crossing points of the few that cross -> sort and count the face pairs.
 #include "query/find_self_intersections.h"
-
-#include <embree3/rtcore.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <mutex>
-#include <new>
 #include <tuple>
 #include <utility>
 
 #include "core/bbox.h"
-#include "query/embree_device.h"
+#include "kernels/box_pairs.h"
 
 namespace hm {
 namespace {
@@ -26,6 +22,8 @@ struct Triangles {
 
 Triangles collect_triangles(const SurfaceMesh& mesh, const Vec3d& centre) {
   Triangles t;
+  t.corners.reserve(2 * mesh.faces.size());
+  t.face.reserve(2 * mesh.faces.size());
   auto add = [&](Index f, Index a, Index b, Index c) {
     t.corners.push_back(
         {mesh.positions[a] - centre, mesh.positions[b] - centre, mesh.positions[c] - centre});
@@ -146,77 +144,11 @@ bool triangles_cross(const std::array<Vec3d, 3>& a, const std::array<Vec3d, 3>& 
   return true;
 }
 
-// ---- the candidates, from Embree ----------------------------------------------------------------
-
-struct CollideState {
-  const SurfaceMesh* mesh = nullptr;
-  const Triangles* tris = nullptr;
-  double tol = 0;
-  std::mutex lock;
-  std::vector<std::pair<std::pair<Index, Index>, Vec3d>> hits;  // triangle pairs, a < b
-  bool out_of_memory = false;
-};
-
 bool share_a_vertex(const Face& f, const Face& g) {
   for (int i = 0; i < corner_count(f); ++i)
     for (int j = 0; j < corner_count(g); ++j)
       if (f[i] == g[j]) return true;
   return false;
-}
-
-// Float box of a triangle, rounded outward so that it holds the double triangle.
-void bounds(const RTCBoundsFunctionArguments* args) noexcept {
-  const CollideState& s = *static_cast<const CollideState*>(args->geometryUserPtr);
-  const std::array<Vec3d, 3>& t = s.tris->corners[args->primID];
-  BBox3d box;
-  for (const Vec3d& p : t) box.add(p);
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  auto down = [](double x) { return std::nextafter(static_cast<float>(x), -kInf); };
-  auto up = [](double x) { return std::nextafter(static_cast<float>(x), kInf); };
-  RTCBounds* b = args->bounds_o;
-  b->lower_x = down(box.lo.x), b->lower_y = down(box.lo.y), b->lower_z = down(box.lo.z);
-  b->upper_x = up(box.hi.x), b->upper_y = up(box.hi.y), b->upper_z = up(box.hi.z);
-}
-
-// Called by Embree from its worker threads with batches of box-overlapping pairs. Deciding a
-// pair allocates nothing; only a hit takes the lock, and a failed allocation is recorded rather
-// than thrown into Embree.
-void collide(void* user, RTCCollision* pairs, unsigned count) noexcept {
-  CollideState& s = *static_cast<CollideState*>(user);
-  for (unsigned k = 0; k < count; ++k) {
-    Index a = pairs[k].primID0, b = pairs[k].primID1;
-    if (a == b) continue;
-    if (a > b) std::swap(a, b);
-    const Index fa = s.tris->face[a], fb = s.tris->face[b];
-    if (fa == fb || share_a_vertex(s.mesh->faces[fa], s.mesh->faces[fb])) continue;
-    Vec3d where;
-    if (!triangles_cross(s.tris->corners[a], s.tris->corners[b], s.tol, where)) continue;
-    const std::lock_guard<std::mutex> guard(s.lock);
-    try {
-      s.hits.push_back({{a, b}, where});
-    } catch (...) {
-      s.out_of_memory = true;
-    }
-  }
-}
-
-void collide_candidates(CollideState& state) {
-  RTCDevice device = query::embree_device();
-  const query::ScenePtr scene(rtcNewScene(device));
-  query::check_embree("rtcNewScene");
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(state.tris->face.size()));
-  rtcSetGeometryUserData(geom, &state);
-  rtcSetGeometryBoundsFunction(geom, bounds, nullptr);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene.get(), geom);
-  rtcReleaseGeometry(geom);
-  query::check_embree("building the collision geometry");
-  rtcCommitScene(scene.get());
-  query::check_embree("rtcCommitScene (collision)");
-  rtcCollide(scene.get(), scene.get(), collide, &state);
-  query::check_embree("rtcCollide");
-  if (state.out_of_memory) throw std::bad_alloc();
 }
 
 }  // namespace
@@ -229,17 +161,32 @@ SelfIntersections find_self_intersections(const SurfaceMesh& mesh, double tol,
   for (const Vec3d& p : mesh.positions) box.add(p);
   const Triangles tris = collect_triangles(mesh, box.center());
 
-  CollideState state;
-  state.mesh = &mesh;
-  state.tris = &tris;
-  state.tol = tol;
-  collide_candidates(state);
+  // Boxes in double: a pair whose boxes only touch cannot cross by more than tol.
+  std::vector<Vec3d> lo(tris.corners.size()), hi(tris.corners.size());
+  for (std::size_t t = 0; t < lo.size(); ++t) {
+    BBox3d b;
+    for (const Vec3d& p : tris.corners[t]) b.add(p);
+    lo[t] = b.lo;
+    hi[t] = b.hi;
+  }
+  const auto crossing = [&](Index a, Index b, Vec3d& where) {
+    const Index fa = tris.face[a], fb = tris.face[b];
+    if (fa == fb || share_a_vertex(mesh.faces[fa], mesh.faces[fb])) return false;
+    return triangles_cross(tris.corners[a], tris.corners[b], tol, where);
+  };
+  const std::vector<std::array<Index, 2>> hits =
+      overlapping_box_pairs(lo, hi, [&](Index a, Index b) {
+        Vec3d where;
+        return crossing(a, b, where);
+      });
 
   // Face pairs, in a fixed order whatever order the threads found them in.
   std::vector<FaceCrossing> faces;
-  faces.reserve(state.hits.size());
-  for (const auto& [pair, where] : state.hits) {
-    Index fa = tris.face[pair.first], fb = tris.face[pair.second];
+  faces.reserve(hits.size());
+  for (const auto& [a, b] : hits) {
+    Vec3d where;
+    crossing(a, b, where);  // again, for the point: crossings are few
+    Index fa = tris.face[a], fb = tris.face[b];
     if (fa > fb) std::swap(fa, fb);
     faces.push_back({fa, fb, where + box.center()});
   }
