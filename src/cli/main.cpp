@@ -6,34 +6,14 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <new>
 #include <thread>
 
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-
 #include "cli/execute.h"
+#include "cli/tune_allocator.h"
 #include "core/error.h"
 
 namespace {
-
-// Every stage builds arrays of the whole mesh and frees them. glibc hands large blocks back to the
-// kernel on free and maps them again on the next allocation, and each first touch of a page is
-// a fault (a quarter of the faults of a 2,000-panel kcs run came from that). Keeping 64 MB of
-// freed memory for reuse: 10% less wall time on 2 threads (structured kcs 2,000 panels 0.37 ->
-// 0.32 s, unstructured ship_449 4,000 panels 0.84 -> 0.76 s) for 2 MB more peak memory. A user's
-// own GLIBC_TUNABLES for malloc win.
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (tunables != nullptr && std::strstr(tunables, "glibc.malloc.") != nullptr) return;
-  mallopt(M_TOP_PAD, 64 << 20);
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-#endif
-}
 
 int run(int argc, char** argv) {
   using namespace hm::cli;
@@ -58,7 +38,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  keep_freed_memory();
+  hm::cli::tune_allocator(argv);
   try {
     return run(argc, argv);
   } catch (const hm::Error& e) {

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "cli/tune_allocator.h"
 #include "io/atomic_file.h"
 #include "io/sha256.h"
 
@@ -114,6 +115,7 @@ ordered_json record_json(const RunRecord& r) {
   ordered_json j;
   j["hullmesh"] = HULLMESH_VERSION;
   j["command"] = r.command;
+  j["allocator"] = allocator_setting();
   if (!r.input.empty()) j["input"] = file_record(r.input);
   j["parameters"] = r.parameters;
   ordered_json outputs = ordered_json::array();
