@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/tune_allocator.h"
 #include "iges/read_iges.h"
 #include "kernels/collapse_cost.h"
 #include "kernels/independent_set.h"
@@ -170,6 +171,8 @@ void print_summary() {
 }  // namespace hm
 
 int main(int argc, char** argv) {
+  // The allocator the CLI runs with, so that the figures are those users get.
+  hm::cli::tune_allocator(argv);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/tune_allocator.h"
 #include "iges/read_iges.h"
 #include "kernels/morton.h"
 #include "kernels/weld.h"
@@ -161,6 +162,8 @@ void print_goals() {
 }  // namespace hm
 
 int main(int argc, char** argv) {
+  // The allocator the CLI runs with, so that the figures are those users get.
+  hm::cli::tune_allocator(argv);
   bool filtered = false;
   for (int i = 1; i < argc; ++i) filtered |= std::string(argv[i]).starts_with("--benchmark_filter");
   benchmark::Initialize(&argc, argv);

@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/tune_allocator.h"
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
@@ -201,6 +202,8 @@ void print_summary() {
 }  // namespace hm
 
 int main(int argc, char** argv) {
+  // The allocator the CLI runs with, so that the figures are those users get.
+  hm::cli::tune_allocator(argv);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

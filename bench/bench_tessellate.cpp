@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/tune_allocator.h"
 #include "iges/read_iges.h"
 #include "nurbs/generate_hull.h"
 #include "tessellate/tessellate.h"
@@ -171,6 +172,8 @@ void print_goals() {
 }  // namespace hm
 
 int main(int argc, char** argv) {
+  // The allocator the CLI runs with, so that the figures are those users get.
+  hm::cli::tune_allocator(argv);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
