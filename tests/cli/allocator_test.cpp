@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "support/test_support.h"
@@ -17,13 +16,6 @@ namespace {
 namespace fs = std::filesystem;
 namespace test = hm::test;
 using test::q;
-
-std::string bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Sets an environment variable for the scope of one run (popen passes the environment on).
 class ScopedEnv {
@@ -58,7 +50,7 @@ MeshRun mesh_once(const fs::path& dir, const fs::path& igs) {
   std::ifstream in(dir / "panels.run.json");
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   EXPECT_FALSE(j.is_discarded());
-  return {j.value("allocator", std::string{}), bytes(out)};
+  return {j.value("allocator", std::string{}), test::file_bytes(out)};
 }
 
 TEST(CliAllocator, EachSettingIsRecordedAndMakesTheSameMesh) {

@@ -12,7 +12,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
-#include <sstream>
 #include <string>
 #include <thread>
 
@@ -25,13 +24,6 @@ namespace fs = std::filesystem;
 using test::run_hullmesh;
 
 using test::q;
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 void write_bytes(const fs::path& p, const std::string& bytes) {
   std::ofstream(p, std::ios::binary) << bytes;
@@ -49,7 +41,7 @@ TEST(CliKill, AKilledMesherLeavesTheOldOutputOrTheNewOneNeverATornFile) {
   const auto t0 = std::chrono::steady_clock::now();
   ASSERT_EQ(run_hullmesh(args).exit_code, 0);
   const double whole = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::string new_mesh = read_bytes(out);
+  const std::string new_mesh = test::file_bytes(out);
   ASSERT_GT(new_mesh.size(), 1000u);
   const std::string old_mesh = "an older mesh that a killed run must not tear\n";
   const std::string old_record = "{\"older\": true}\n";
@@ -69,8 +61,8 @@ TEST(CliKill, AKilledMesherLeavesTheOldOutputOrTheNewOneNeverATornFile) {
     kill(pid, SIGKILL);
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
-    const std::string mesh = read_bytes(out);
-    const std::string rec = read_bytes(record);
+    const std::string mesh = test::file_bytes(out);
+    const std::string rec = test::file_bytes(record);
     SCOPED_TRACE("trial " + std::to_string(trial) + ", killed after " + std::to_string(delay) +
                  " s of a " + std::to_string(whole) + " s run");
     EXPECT_TRUE(mesh == old_mesh || mesh == new_mesh) << "torn mesh: " << mesh.size() << " bytes";
@@ -84,7 +76,7 @@ TEST(CliKill, AKilledMesherLeavesTheOldOutputOrTheNewOneNeverATornFile) {
   // A killed run leaves at most its own temporary beside the target, never under the target's
   // name: the next run replaces the file whole.
   ASSERT_EQ(run_hullmesh(args).exit_code, 0);
-  EXPECT_EQ(read_bytes(out), new_mesh);
+  EXPECT_EQ(test::file_bytes(out), new_mesh);
 }
 
 }  // namespace

@@ -18,6 +18,8 @@ std::filesystem::path shared_hull(const std::string& name);
 std::filesystem::path scratch_dir(const std::string& test_name);
 // Path of the built hullmesh executable.
 std::filesystem::path hullmesh_exe();
+// The whole file as bytes (empty when it cannot be read).
+std::string file_bytes(const std::filesystem::path& p);
 
 // A path quoted for the shell that run_hullmesh and spawn_hullmesh go through.
 inline std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
