@@ -1,9 +1,10 @@
 // Why: each first touch of a fresh page is a fault, and on these virtual machines a fault costs
-// microseconds. A 2,000-panel kcs structured run took 13,300 faults with glibc's defaults, 9,100
-// with freed memory kept (mallopt), and 800 with huge pages as well; wall time on 2 threads
-// 0.37 -> 0.32 -> 0.27 s, and 20-30% less on the other shared hulls and on the unstructured
-// and merge commands, for 3-6 MB more peak memory. Huge pages for malloc's memory are a glibc
-// tunable (glibc.malloc.hugetlb, 2.35 on), read only when a program starts: hence the re-run.
+// microseconds. A 2,000-panel kcs structured run took 11,900-13,300 faults with glibc's
+// defaults, 9,100 with freed memory kept (mallopt), and about 1,000 with huge pages as well; wall
+// time on 2 threads 0.37 -> 0.32 -> 0.24 s. The other shared hulls and the unstructured and merge
+// commands gain 10-35%, for 3-11 MB more peak memory (38 MB, 19%, on a 470,000-triangle merge).
+// Huge pages for malloc's memory are a glibc tunable (glibc.malloc.hugetlb, 2.35 on), read only
+// when a program starts: hence the re-run.
 #include "cli/tune_allocator.h"
 
 #include <cstdlib>
