@@ -1,6 +1,6 @@
 // Mesh writers and readers on a panel ladder (10^3, 10^4, 10^5 panels), in memory: the text
 // formatting and parsing cost, without the disk. Arguments: panel count, format index (in
-// mesh_formats() order).
+// mesh_formats() order). Then the run record's SHA-256, both ways.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/read_mesh.h"
+#include "io/sha256.h"
 #include "io/write_mesh.h"
 
 namespace hm {
@@ -78,6 +79,22 @@ void ladder(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Write)->Apply(ladder);
 BENCHMARK(BM_Read)->Apply(ladder);
+
+// SHA-256 of 16 MB, as the run record hashes every input and output: the x86 SHA extensions
+// (arg 0, where the processor has them) against the plain C++ rounds (arg 1). Items are bytes.
+void BM_Sha256(benchmark::State& state) {
+  std::string data(16 << 20, '\0');
+  for (std::size_t i = 0; i < data.size(); ++i) data[i] = static_cast<char>(i * 2654435761u >> 24);
+  for (auto _ : state) {
+    hm::Sha256 h(state.range(0) != 0);
+    h.update(data.data(), data.size());
+    benchmark::DoNotOptimize(h.finish());
+  }
+  state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(data.size()));
+  state.SetLabel(hm::Sha256(state.range(0) != 0).uses_cpu_instructions() ? "SHA extensions"
+                                                                         : "plain C++");
+}
+BENCHMARK(BM_Sha256)->ArgName("portable")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace hm

@@ -11,17 +11,21 @@ namespace hm {
 
 class Sha256 {
  public:
-  Sha256();
+  // With the x86 SHA extensions where the processor has them, unless `portable` (the plain C++
+  // rounds, which the tests hold the instructions to).
+  explicit Sha256(bool portable = false);
   void update(const void* data, std::size_t bytes);
   // The digest; the object must not be updated afterwards.
   std::array<std::uint8_t, 32> finish();
+  bool uses_cpu_instructions() const;
 
  private:
-  void block(const std::uint8_t* p);
+  void blocks(const std::uint8_t* p, std::size_t count);
   std::array<std::uint32_t, 8> h_;
   std::array<std::uint8_t, 64> buffer_{};
   std::size_t buffered_ = 0;
   std::uint64_t total_bytes_ = 0;
+  bool portable_ = false;
 };
 
 // Lower-case hex of the digest of `bytes`.
