@@ -372,7 +372,7 @@ std::vector<std::vector<Vec2d>> sample_loops_uv(const Patch& p, double tol_uv) {
 
 double patch_area(const Patch& p, double rel_tol) {
   if (!(rel_tol > 0) || !(rel_tol < 1))
-    throw UsageError("patch area: the tolerance must lie in (0, 1)");
+    throw InternalError("patch area: the tolerance must lie in (0, 1)");
   const NurbsSurface& s = p.surface;
   const AreaIntegrator integrator(s, rel_tol);
   const Cell domain{s.u0, s.u1, s.v0, s.v1};

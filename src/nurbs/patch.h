@@ -47,8 +47,9 @@ std::vector<std::vector<Vec2d>> sample_loops_uv(const Patch& p, double tol_uv);
 
 // Area of the patch's surface (m^2), inside its loops, by Gauss-Legendre quadrature over the knot
 // spans (adaptively split where a trim loop crosses a cell). A cell is accepted when rules of two
-// orders agree to rel_tol of its value (or of its share of the patch): the default is as exact
-// as double allows; kAreaEstimateTol is for sizes derived from the area, at a fraction of the cost.
+// orders agree to rel_tol of its value (or of its share of the patch): kAreaExactTol, the
+// default, for areas that are reported or compared; kAreaEstimateTol for sizes derived from the
+// area, at about half the cost. rel_tol outside (0, 1) is an InternalError.
 inline constexpr double kAreaExactTol = 1e-11;
 inline constexpr double kAreaEstimateTol = 1e-5;
 double patch_area(const Patch& p, double rel_tol = kAreaExactTol);

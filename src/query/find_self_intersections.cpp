@@ -161,7 +161,7 @@ SelfIntersections find_self_intersections(const SurfaceMesh& mesh, double tol,
   for (const Vec3d& p : mesh.positions) box.add(p);
   const Triangles tris = collect_triangles(mesh, box.center());
 
-  // Boxes in double: a pair whose boxes only touch cannot cross by more than tol.
+  // Exact boxes, in double: two triangles whose boxes do not meet cannot cross.
   std::vector<Vec3d> lo(tris.corners.size()), hi(tris.corners.size());
   for (std::size_t t = 0; t < lo.size(); ++t) {
     BBox3d b;

@@ -211,8 +211,8 @@ TEST(PatchArea, EstimateIsWithinItsTolerance) {
   Patch holed = plain(test::random_bicubic(4));
   holed.loops = {square_loop(0.31, 0.22, 0.69, 0.65, false)};
   EXPECT_NEAR(patch_area(holed, kAreaEstimateTol) / patch_area(holed), 1.0, kAreaEstimateTol);
-  EXPECT_THROW(patch_area(holed, 0.0), UsageError);
-  EXPECT_THROW(patch_area(holed, 1.0), UsageError);
+  EXPECT_THROW(patch_area(holed, 0.0), InternalError);
+  EXPECT_THROW(patch_area(holed, 1.0), InternalError);
 }
 
 TEST(Patch, SampleLoopsChainsCurvesWithoutDuplicateJoints) {
