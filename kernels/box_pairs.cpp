@@ -55,11 +55,6 @@ bool sound(const Vec3d& l, const Vec3d& h) {
   return l.x <= h.x && l.y <= h.y && l.z <= h.z && is_finite(l) && is_finite(h);
 }
 
-bool overlap(const Vec3d& al, const Vec3d& ah, const Vec3d& bl, const Vec3d& bh) {
-  return al.x <= bh.x && bl.x <= ah.x && al.y <= bh.y && bl.y <= ah.y && al.z <= bh.z &&
-         bl.z <= ah.z;
-}
-
 }  // namespace
 
 std::vector<std::array<Index, 2>> overlapping_box_pairs(
@@ -181,7 +176,7 @@ std::vector<std::array<Index, 2>> overlapping_box_pairs(
             // Otherwise tested in the cell of the pair's low corner.
             if ((sa | entries[j].starts) != kStartsHere) continue;
             const Index b = entries[j].box;
-            if (!overlap(lo[a], hi[a], lo[b], hi[b])) continue;
+            if (!boxes_meet(lo[a], hi[a], lo[b], hi[b])) continue;
             if (keep(a, b)) found.push_back({a, b});
           }
         }

@@ -222,9 +222,7 @@ SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
     BBox3d fb;
     for (int k = 0; k < 3; ++k) fb.add(m.positions[m.faces[f][k]]);
     for (auto it = std::upper_bound(growing.begin(), growing.end(), q); it != growing.end(); ++it) {
-      const BBox3d& b = box[*it];
-      if (fb.lo.x <= b.hi.x && b.lo.x <= fb.hi.x && fb.lo.y <= b.hi.y && b.lo.y <= fb.hi.y &&
-          fb.lo.z <= b.hi.z && b.lo.z <= fb.hi.z) {
+      if (fb.meets(box[*it])) {
         keep[f] = 1;
         return;
       }
