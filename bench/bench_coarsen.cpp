@@ -6,7 +6,9 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -140,6 +142,34 @@ void BM_SelectGreedy(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(BM_SelectGreedy)->Arg(1 << 14)->Arg(1 << 18);
+
+void BM_SelectGreedyApart(benchmark::State& state) {
+  // Vertices of a regular grid, each with its 8 grid neighbours: smoothing's rings.
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const auto side = static_cast<Index>(std::sqrt(static_cast<double>(n)));
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> pr(0, 1);
+  std::vector<Index> centres, offsets{0}, region;
+  std::vector<std::uint64_t> keys;
+  for (Index y = 0; y < side; ++y) {
+    for (Index x = 0; x < side; ++x) {
+      centres.push_back(x + side * y);
+      for (Index dy = y ? y - 1 : y; dy <= std::min(y + 1, side - 1); ++dy) {
+        for (Index dx = x ? x - 1 : x; dx <= std::min(x + 1, side - 1); ++dx) {
+          region.push_back(dx + side * dy);
+        }
+      }
+      offsets.push_back(static_cast<Index>(region.size()));
+      keys.push_back(kernel::priority_key(pr(rng), static_cast<Index>(keys.size())));
+    }
+  }
+  std::vector<std::uint8_t> held(centres.size(), 0);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(kernel::select_greedy_apart(keys, centres, offsets, region, held));
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(centres.size()));
+}
+BENCHMARK(BM_SelectGreedyApart)->Arg(1 << 12)->Arg(1 << 16);
 
 double seconds(const Input& in, int threads, CoarsenedMesh* out = nullptr) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);

@@ -90,4 +90,33 @@ std::vector<Index> select_greedy(std::span<const std::uint64_t> keys,
   return out;
 }
 
+std::vector<Index> select_greedy_apart(std::span<const std::uint64_t> keys,
+                                       std::span<const Index> centres,
+                                       std::span<const Index> offsets,
+                                       std::span<const Index> region,
+                                       std::vector<std::uint8_t>& held) {
+  // held: 2 at a kept centre, 1 at a neighbour of one (either side of an edge may list it).
+  constexpr std::uint8_t kKept = 2, kNear = 1;
+  std::vector<Index> order(keys.size());
+  std::iota(order.begin(), order.end(), Index{0});
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[a] > keys[b]; });
+  std::vector<Index> out;
+  for (Index i : order) {
+    bool free = held[centres[i]] == 0;
+    for (Index k = offsets[i]; k < offsets[i + 1] && free; ++k) free = held[region[k]] != kKept;
+    if (!free) continue;
+    held[centres[i]] = kKept;
+    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) {
+      if (region[k] != centres[i]) held[region[k]] = kNear;
+    }
+    out.push_back(i);
+  }
+  for (Index i : out) {
+    held[centres[i]] = 0;
+    for (Index k = offsets[i]; k < offsets[i + 1]; ++k) held[region[k]] = 0;
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace hm::kernel

@@ -2,6 +2,7 @@
 // of candidates that each touch a region of vertices, keep a set of which no two share a vertex.
 // Two rules: local maxima (a candidate wins every vertex of its region; parallel, but in a dense
 // batch only a few percent win) and greedy in key order (serial, maximal: many more per batch).
+// For single-vertex moves, select_greedy_apart keeps vertices no two of which are neighbours.
 // Deterministic: keys are distinct (pack the priority above the candidate index).
 #pragma once
 
@@ -32,5 +33,17 @@ std::vector<Index> select_independent(std::span<const std::uint64_t> keys,
 std::vector<Index> select_greedy(std::span<const std::uint64_t> keys,
                                  std::span<const Index> offsets, std::span<const Index> region,
                                  std::vector<std::uint8_t>& held);
+
+// Greedy over vertices, for moves that write one vertex and read its neighbours: candidate i is
+// vertex centres[i], with neighbours region[offsets[i] .. offsets[i + 1]) (repeats and the centre
+// itself allowed). In descending key order a candidate is kept when it is not a neighbour of a
+// kept one and no kept one is its neighbour, so no two kept vertices are adjacent (they may share
+// a neighbour: about four times as many per round as select_greedy on the same rings). Maximal.
+// Returned ascending. `held` is scratch of vertex_count zeros, returned zeroed.
+std::vector<Index> select_greedy_apart(std::span<const std::uint64_t> keys,
+                                       std::span<const Index> centres,
+                                       std::span<const Index> offsets,
+                                       std::span<const Index> region,
+                                       std::vector<std::uint8_t>& held);
 
 }  // namespace hm::kernel

@@ -206,7 +206,7 @@ bool try_move(State& s, Index v, double& deviation) {
   return true;
 }
 
-std::size_t smooth_pass(State& s, std::vector<std::uint64_t>& marks) {
+std::size_t smooth_pass(State& s, std::vector<std::uint8_t>& held) {
   std::vector<Index> pending;
   for (std::size_t v = 0; v < s.position.size(); ++v) {
     if (s.alive[v] && s.kind[v] != Kind::kCorner) pending.push_back(static_cast<Index>(v));
@@ -215,8 +215,9 @@ std::size_t smooth_pass(State& s, std::vector<std::uint64_t>& marks) {
   std::vector<Index> offsets, region;
   std::vector<std::uint64_t> keys;
   while (!pending.empty()) {
-    // Regions: v and its ring. Keys: a fixed hash of v, so that the sets are large (Luby) and
-    // the same for any thread count.
+    // A move writes v (its place and its panels' witnesses) and reads its ring, so moves of
+    // vertices that are not neighbours run together. Keys: a fixed hash of v, so that the sets
+    // are the same for any thread count.
     offsets.assign(pending.size() + 1, 0);
     keys.resize(pending.size());
     for (std::size_t i = 0; i < pending.size(); ++i) {
@@ -224,18 +225,17 @@ std::size_t smooth_pass(State& s, std::vector<std::uint64_t>& marks) {
       std::uint64_t h = (v + 1) * 0x9E3779B97F4A7C15ull;
       h ^= h >> 29;
       keys[i] = kernel::priority_key(static_cast<double>(h & 0xffffff) / 16777216.0, v);
-      offsets[i + 1] = offsets[i] + 1 + 3 * static_cast<Index>(s.vertex_faces[v].size());
+      offsets[i + 1] = offsets[i] + 3 * static_cast<Index>(s.vertex_faces[v].size());
     }
     region.resize(offsets.back());
     parallel_for(0, pending.size(), [&](std::size_t i) {
-      const Index v = pending[i];
       Index k = offsets[i];
-      region[k++] = v;
-      for (Index f : s.vertex_faces[v]) {
+      for (Index f : s.vertex_faces[pending[i]]) {
         for (Index w : s.faces[f]) region[k++] = w;
       }
     });
-    const std::vector<Index> chosen = kernel::select_independent(keys, offsets, region, marks);
+    const std::vector<Index> chosen =
+        kernel::select_greedy_apart(keys, pending, offsets, region, held);
     std::vector<std::uint8_t> moved(chosen.size(), 0);
     std::vector<double> deviation(chosen.size(), 0.0);
     parallel_for(
@@ -265,10 +265,10 @@ std::size_t smooth_pass(State& s, std::vector<std::uint64_t>& marks) {
 
 ImproveCounts improve_panels(State& s, int passes) {
   ImproveCounts counts;
-  std::vector<std::uint64_t> marks(s.position.size(), 0);
+  std::vector<std::uint8_t> held(s.position.size(), 0);
   for (int p = 0; p < passes; ++p) {
     counts.flips += flip_pass(s);
-    counts.moves += smooth_pass(s, marks);
+    counts.moves += smooth_pass(s, held);
   }
   return counts;
 }

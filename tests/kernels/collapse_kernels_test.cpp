@@ -1,6 +1,7 @@
 // The coarsening kernels: the per-criterion qualities and the independent-set selection.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -137,6 +138,60 @@ TEST(IndependentSet, GreedyIsMaximalBestFirstAndKeepsMoreThanLocalMaxima) {
   }
   std::vector<std::uint64_t> marks(vertices, 0);
   EXPECT_GT(kept.size(), select_independent(keys, offsets, region, marks).size());
+}
+
+TEST(IndependentSet, ApartKeepsNoTwoNeighboursIsMaximalAndKeepsMoreThanGreedy) {
+  // A ring of vertices, each joined to the next three on either side (symmetric), listed with
+  // the centre among its neighbours as smoothing lists it (the corners of its faces).
+  std::mt19937 rng(7);
+  const Index vertices = 3000;
+  std::vector<Index> centres, offsets{0}, region;
+  std::vector<std::uint64_t> keys;
+  std::uniform_real_distribution<double> pr(0, 1);
+  for (Index v = 0; v < vertices; v += 1 + (v % 5 == 0)) {  // some vertices are no candidate
+    centres.push_back(v);
+    region.push_back(v);
+    for (Index d = 1; d <= 3; ++d) {
+      region.push_back((v + d) % vertices);
+      region.push_back((v + vertices - d) % vertices);
+    }
+    offsets.push_back(static_cast<Index>(region.size()));
+    keys.push_back(priority_key(pr(rng), static_cast<Index>(keys.size())));
+  }
+  auto near = [&](Index a, Index b) {
+    const Index d = a > b ? a - b : b - a;
+    return std::min(d, vertices - d) <= 3;
+  };
+  std::vector<std::uint8_t> held(vertices, 0);
+  const std::vector<Index> kept = select_greedy_apart(keys, centres, offsets, region, held);
+  for (std::uint8_t h : held) ASSERT_EQ(h, 0u);
+  ASSERT_FALSE(kept.empty());
+  EXPECT_TRUE(std::is_sorted(kept.begin(), kept.end()));
+  for (std::size_t a = 0; a < kept.size(); ++a) {
+    for (std::size_t b = a + 1; b < kept.size(); ++b) {
+      EXPECT_FALSE(near(centres[kept[a]], centres[kept[b]]))
+          << centres[kept[a]] << " and " << centres[kept[b]] << " are neighbours";
+    }
+  }
+  // Maximal, best first: each candidate left out has a kept neighbour of larger key.
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    if (std::binary_search(kept.begin(), kept.end(), Index(i))) continue;
+    bool blocked = false;
+    for (Index c : kept) blocked = blocked || (near(centres[c], centres[i]) && keys[c] > keys[i]);
+    EXPECT_TRUE(blocked) << i;
+  }
+  // A neighbour listed on one side only still keeps the two apart.
+  const std::vector<Index> one_way_offsets{0, 1, 1};
+  const std::vector<Index> one_way_region{1}, one_way_centres{0, 1};
+  const std::vector<std::uint64_t> one_way_keys{priority_key(0.2, 0), priority_key(0.9, 1)};
+  EXPECT_EQ(
+      select_greedy_apart(one_way_keys, one_way_centres, one_way_offsets, one_way_region, held),
+      std::vector<Index>{1});
+  EXPECT_EQ(
+      select_greedy_apart(std::vector<std::uint64_t>{priority_key(0.9, 0), priority_key(0.2, 1)},
+                          one_way_centres, one_way_offsets, one_way_region, held),
+      std::vector<Index>{0});
+  EXPECT_GT(kept.size(), select_greedy(keys, offsets, region, held).size());
 }
 
 TEST(IndependentSet, PriorityKeyOrdersByPriorityThenSmallerIndex) {
