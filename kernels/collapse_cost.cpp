@@ -32,7 +32,7 @@ double equilateral_edge(double area) { return std::sqrt(std::max(0.0, 4 * area /
 double area_ratio_quality(std::span<const double> areas) {
   if (areas.empty()) return 1;
   const auto [lo, hi] = std::minmax_element(areas.begin(), areas.end());
-  return *hi > 0 ? *lo / *hi : 0;
+  return area_ratio_quality(*lo, *hi);
 }
 
 // Ericson's region test (Real-Time Collision Detection, 5.1.5), with the degenerate case

@@ -27,6 +27,10 @@ inline double size_quality(double r) { return r >= 2 ? 0.0 : (r <= 0 ? 1.0 : 1.0
 // q2, the area ratio of neighbouring panels: smallest area over largest among `areas` (the
 // panels around the vertex that survives a collapse). 1 when all are equal, 0 when one is zero.
 double area_ratio_quality(std::span<const double> areas);
+// The same from the smallest and largest area alone (any common scale).
+inline double area_ratio_quality(double smallest, double largest) {
+  return largest > 0 ? smallest / largest : 0;
+}
 
 // The paper's weighted index q = sum_i (w_i q_i) / n over n = 4 criteria (shape, area ratio,
 // curvature size, source size).

@@ -2,6 +2,7 @@
 // topology, folds, slivers) and the paper's weighted index q of the panels it makes.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "kernels/collapse_cost.h"
@@ -102,7 +103,6 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   Candidate out;
   if (!feature_allows(s, v, t)) return out;
   thread_local std::vector<Index> ring_t;
-  thread_local std::vector<double> areas;
   const auto& star = s.vertex_faces[v];
   int on_edge = 0;
   for (Index f : star) on_edge += has_corner(s.faces[f], t);
@@ -126,7 +126,8 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
   const bool has_sources = s.field.w_sources > 0 && !s.field.sources.empty();
   double shape_new = 1;
   double r2_curv = 0, r2_src = 0, r2_all = 0;
-  areas.clear();
+  // Twice the smallest and largest panel area around t after the collapse (for q2).
+  double area2_lo = std::numeric_limits<double>::infinity(), area2_hi = 0;
   for (std::size_t i = 0; i < star.size(); ++i) {
     const auto& tri = s.faces[star[i]];
     if (has_corner(tri, t)) continue;
@@ -148,7 +149,8 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
                  e20 = squared_norm(p0 - p2);
     const double l2sum = e01 + e12 + e20;
     shape_new = std::min(shape_new, std::min(1.0, kShapePerNormal * len_new / l2sum));
-    areas.push_back(0.5 * len_new);
+    area2_lo = std::min(area2_lo, len_new);
+    area2_hi = std::max(area2_hi, len_new);
     const double cf = std::min({s.cfactor[v], s.cfactor[w[0]], s.cfactor[w[1]], s.cfactor[w[2]]});
     const double hg = std::min({s.gate_h[v], s.gate_h[w[0]], s.gate_h[w[1]], s.gate_h[w[2]]});
     const double l2 = kEdge2PerNormal * len_new;
@@ -168,16 +170,24 @@ Candidate score_with(const State& s, Index v, Index t, const Star& st, bool chec
     const double short_edge = kShortEdge * s.gate_h[v];
     if (squared_norm(s.position[t] - s.position[v]) >= short_edge * short_edge) return out;
   }
-  // Neighbouring panels: the rest of t's faces, unchanged by the collapse.
+  // Neighbouring panels: the rest of t's faces, unchanged by the collapse. Compared squared and
+  // rooted once each (the root is monotone: the same extremes).
+  double t2_lo = std::numeric_limits<double>::infinity(), t2_hi = -1;
   for (Index f : s.vertex_faces[t]) {
     const auto& tri = s.faces[f];
     if (has_corner(tri, v)) continue;
-    areas.push_back(0.5 * norm(cross(s.position[tri[1]] - s.position[tri[0]],
-                                     s.position[tri[2]] - s.position[tri[0]])));
+    const double n2 = squared_norm(
+        cross(s.position[tri[1]] - s.position[tri[0]], s.position[tri[2]] - s.position[tri[0]]));
+    t2_lo = std::min(t2_lo, n2);
+    t2_hi = std::max(t2_hi, n2);
+  }
+  if (t2_hi >= 0) {
+    area2_lo = std::min(area2_lo, std::sqrt(t2_lo));
+    area2_hi = std::max(area2_hi, std::sqrt(t2_hi));
   }
   kernel::CollapseQualities q;
   q.shape = shape_new;
-  q.area_ratio = kernel::area_ratio_quality(areas);
+  q.area_ratio = kernel::area_ratio_quality(area2_lo, area2_hi);
   q.curvature = kernel::size_quality(std::sqrt(r2_curv));
   q.sources = kernel::size_quality(std::sqrt(r2_src));
   out.target = t;
