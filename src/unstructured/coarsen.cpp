@@ -158,7 +158,7 @@ struct Run {
   }
 
   void batched() {
-    std::vector<std::uint8_t> held(s.position.size(), 0);
+    std::vector<std::uint8_t> held(s.position.size(), 0), listed(s.position.size(), 0);
     std::vector<Index> pool, offsets, region, dirty;
     std::vector<std::uint64_t> keys;
     double last_mean = 2;
@@ -233,8 +233,16 @@ struct Run {
           cand[v] = Candidate{};  // blocked until something around it changes
         }
       }
-      std::sort(dirty.begin(), dirty.end());
-      dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
+      // Each vertex once (rescoring writes only its own slot, so the order does not matter).
+      std::size_t kept = 0;
+      for (Index w : dirty) {
+        if (!listed[w]) {
+          listed[w] = 1;
+          dirty[kept++] = w;
+        }
+      }
+      dirty.resize(kept);
+      for (Index w : dirty) listed[w] = 0;
       rescore(dirty);
       ++report.rounds;
       if (quality_reached(last_mean)) break;
