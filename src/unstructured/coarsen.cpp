@@ -96,11 +96,16 @@ struct Run {
         kRoundSerialBelow);
   }
 
-  // The vertices whose candidates a collapse into t may have changed: t and its ring.
-  void touched_by(Index t, std::vector<Index>& out) const {
+  // The vertices whose own panels a collapse v -> t changes, to be rescored after it (listed
+  // before it, with repeats): t and v's other neighbours. The rest of t's ring keep their panels
+  // and their checks; only q2 of their collapses into t sees t's new panels. They are rescored
+  // when their own panels change, and any stale candidate is checked again before it is applied.
+  void changed_by(Index v, Index t, std::vector<Index>& out) const {
     out.push_back(t);
-    for (Index f : s.vertex_faces[t]) {
-      for (Index w : s.faces[f]) out.push_back(w);
+    for (Index f : s.vertex_faces[v]) {
+      for (Index w : s.faces[f]) {
+        if (w != v && w != t) out.push_back(w);
+      }
     }
   }
 
@@ -159,7 +164,7 @@ struct Run {
 
   void batched() {
     std::vector<std::uint8_t> held(s.position.size(), 0), listed(s.position.size(), 0);
-    std::vector<Index> pool, offsets, region, dirty;
+    std::vector<Index> pool, offsets, region, dirty, changed, changed_first;
     std::vector<std::uint64_t> keys;
     double last_mean = 2;
     while (!target_reached()) {
@@ -209,6 +214,12 @@ struct Run {
         while (keep < chosen.size() && faces > target) faces -= cand[chosen[keep++]].faces_removed;
         chosen.resize(keep);
       }
+      changed_first.assign(1, 0);
+      changed.clear();
+      for (Index v : chosen) {
+        changed_by(v, cand[v].target, changed);
+        changed_first.push_back(static_cast<Index>(changed.size()));
+      }
       // Apply in parallel: the regions are disjoint.
       std::vector<Applied> result(chosen.size());
       std::vector<double> deviation(chosen.size(), 0.0);
@@ -224,10 +235,10 @@ struct Run {
       dirty.clear();
       for (std::size_t i = 0; i < chosen.size(); ++i) {
         const Index v = chosen[i];
-        const Index t = cand[v].target;
         commit(v, result[i], deviation[i], joined[i]);
         if (result[i] == Applied::kDone) {
-          touched_by(t, dirty);
+          dirty.insert(dirty.end(), changed.begin() + changed_first[i],
+                       changed.begin() + changed_first[i + 1]);
           cand[v] = Candidate{};
         } else {
           cand[v] = Candidate{};  // blocked until something around it changes
@@ -277,13 +288,13 @@ struct Run {
         const Index t = cand[e.v].target;
         double deviation = 0;
         std::array<Index, 2> joined;
+        dirty.clear();
+        changed_by(e.v, t, dirty);
         const Applied a = apply_collapse(s, e.v, t, deviation, joined);
         commit(e.v, a, deviation, joined);
         cand[e.v] = Candidate{};
         ++stamp[e.v];
         if (a != Applied::kDone) continue;
-        dirty.clear();
-        touched_by(t, dirty);
         std::sort(dirty.begin(), dirty.end());
         dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
         rescore(dirty);
