@@ -4,6 +4,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include "core/parallel.h"
@@ -75,7 +76,10 @@ std::vector<Index> select_greedy(std::span<const std::uint64_t> keys,
                                  std::vector<std::uint8_t>& held) {
   std::vector<Index> order(keys.size());
   std::iota(order.begin(), order.end(), Index{0});
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[a] > keys[b]; });
+  // Callers that rank their batch first pass it in order already.
+  if (!std::is_sorted(keys.begin(), keys.end(), std::greater<>())) {
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[a] > keys[b]; });
+  }
   std::vector<Index> out;
   for (Index i : order) {
     bool free = true;

@@ -17,6 +17,8 @@ namespace hm::kernel {
 // Key of a candidate: larger wins. `priority` >= 0 (a quality in [0, 1], say); ties go to the
 // smaller index. Equal (priority, index) pairs give equal keys.
 std::uint64_t priority_key(double priority, Index index);
+// The index a key was made from.
+inline Index key_index(std::uint64_t key) { return static_cast<Index>(~key & 0xffffffffu); }
 
 // Candidate i touches vertices region[offsets[i] .. offsets[i + 1]) (each < vertex_count; a
 // vertex may repeat within one region). Returns the candidates that hold the largest key at

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <queue>
 #include <string>
@@ -181,16 +182,21 @@ struct Run {
         continue;
       }
       // Select: the best `batch` by key, then greedily, best first, those whose regions are
-      // disjoint (a maximal independent set: local maxima alone keep ~1% of a dense batch).
-      auto key_of = [&](Index v) { return kernel::priority_key(cand[v].q, v); };
-      if (pool.size() > batch) {
-        std::nth_element(pool.begin(), pool.begin() + static_cast<std::ptrdiff_t>(batch),
-                         pool.end(), [&](Index a, Index b) { return key_of(a) > key_of(b); });
-        pool.resize(batch);
-      }
-      std::sort(pool.begin(), pool.end());
-      // Regions by count -> exclusive scan -> scatter: each candidate writes its own slice.
+      // disjoint (a maximal independent set: local maxima alone keep ~1% of a dense batch). The
+      // keys carry the vertex, so they are ranked as plain integers, best first.
       keys.resize(pool.size());
+      for (std::size_t i = 0; i < pool.size(); ++i) {
+        keys[i] = kernel::priority_key(cand[pool[i]].q, pool[i]);
+      }
+      if (keys.size() > batch) {
+        std::nth_element(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(batch),
+                         keys.end(), std::greater<>());
+        keys.resize(batch);
+      }
+      std::sort(keys.begin(), keys.end(), std::greater<>());
+      pool.resize(keys.size());
+      for (std::size_t i = 0; i < keys.size(); ++i) pool[i] = kernel::key_index(keys[i]);
+      // Regions by count -> exclusive scan -> scatter: each candidate writes its own slice.
       offsets.assign(pool.size() + 1, 0);
       for (std::size_t i = 0; i < pool.size(); ++i) {
         const Index v = pool[i];
@@ -200,7 +206,6 @@ struct Run {
       parallel_for(
           0, pool.size(),
           [&](std::size_t i) {
-            keys[i] = key_of(pool[i]);
             collapse_region(
                 s, pool[i], cand[pool[i]].target,
                 std::span<Index>(region).subspan(offsets[i], offsets[i + 1] - offsets[i]));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -138,6 +139,21 @@ TEST(IndependentSet, GreedyIsMaximalBestFirstAndKeepsMoreThanLocalMaxima) {
   }
   std::vector<std::uint64_t> marks(vertices, 0);
   EXPECT_GT(kept.size(), select_independent(keys, offsets, region, marks).size());
+  // The same candidates handed over best first (the sort is skipped) keep the same ones.
+  std::vector<Index> order(candidates);
+  std::iota(order.begin(), order.end(), Index{0});
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return keys[a] > keys[b]; });
+  std::vector<std::uint64_t> ranked_keys;
+  std::vector<Index> ranked_offsets{0}, ranked_region;
+  for (Index c : order) {
+    ranked_keys.push_back(keys[c]);
+    ranked_region.insert(ranked_region.end(), region.begin() + offsets[c],
+                         region.begin() + offsets[c + 1]);
+    ranked_offsets.push_back(static_cast<Index>(ranked_region.size()));
+  }
+  std::vector<Index> ranked_kept = select_greedy(ranked_keys, ranked_offsets, ranked_region, held);
+  for (Index& c : ranked_kept) c = order[c];
+  EXPECT_EQ(ranked_kept, kept);
 }
 
 TEST(IndependentSet, ApartKeepsNoTwoNeighboursIsMaximalAndKeepsMoreThanGreedy) {
@@ -198,6 +214,8 @@ TEST(IndependentSet, PriorityKeyOrdersByPriorityThenSmallerIndex) {
   EXPECT_GT(priority_key(0.6, 9), priority_key(0.5, 1));
   EXPECT_GT(priority_key(0.5, 1), priority_key(0.5, 2));
   EXPECT_EQ(priority_key(-1, 3), priority_key(0, 3));
+  EXPECT_EQ(key_index(priority_key(0.3, 77)), 77u);
+  EXPECT_EQ(key_index(priority_key(0, 0xfffffffeu)), 0xfffffffeu);
   EXPECT_EQ(priority_key(NAN, 3), priority_key(0, 3));
 }
 
