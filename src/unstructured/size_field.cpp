@@ -88,7 +88,9 @@ double calibrate_panel_size(const SurfaceMesh& fine, std::span<const double> cfa
   for (double a : area) total += a;
   field.h0 =
       std::sqrt(total / (kEquilateral * static_cast<double>(std::max<std::size_t>(panels, 1))));
-  for (int it = 0; it < 8; ++it) {
+  // Without sources the factor is 1 everywhere and one pass is the fixed point.
+  const int passes = field.w_sources <= 0 || field.sources.empty() ? 1 : 8;
+  for (int it = 0; it < passes; ++it) {
     double weighted = 0;  // serial sum in face order: the same bits for any thread count
     for (std::size_t f = 0; f < area.size(); ++f) {
       const double s = field.source_factor(centre[f]);
