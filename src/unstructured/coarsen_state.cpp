@@ -3,6 +3,8 @@
 #include "unstructured/coarsen_state.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -155,30 +157,56 @@ bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
                         std::span<const Index> targets, double& deviation) {
   // Gather (witness, chosen target) first; commit only when every witness is within the bound.
   thread_local std::vector<std::pair<Index, Index>> moves;
+  // Per target: the centroid and the radius of the ball around it that holds the triangle, so
+  // that a target that cannot be nearest is passed over without the exact distance.
+  thread_local std::vector<Vec3d> centre;
+  thread_local std::vector<double> radius;
   moves.clear();
+  centre.resize(targets.size());
+  radius.resize(targets.size());
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const auto& t = s.faces[targets[i]];
+    const Vec3d &a = s.position[t[0]], &b = s.position[t[1]], &c = s.position[t[2]];
+    centre[i] = (a + b + c) / 3.0;
+    radius[i] = std::sqrt(std::max(
+        {squared_norm(a - centre[i]), squared_norm(b - centre[i]), squared_norm(c - centre[i])}));
+  }
   const double bound2 = s.bound * s.bound;
   double worst2 = 0;
-  auto place = [&](Index w) {
+  // The nearest target, the first in `targets` among equals (as a scan in order finds it).
+  // `first` is tried first: the witness's own face when it is a target, usually the nearest.
+  auto place = [&](Index w, std::size_t first) {
     const Vec3d& p = s.fine_positions[w];
-    double best = std::numeric_limits<double>::infinity();
-    Index best_f = kInvalid;
-    for (Index f : targets) {
-      const auto& t = s.faces[f];
+    double best = std::numeric_limits<double>::infinity(), best_root = best;
+    std::size_t best_i = targets.size();
+    auto consider = [&](std::size_t i) {
+      const auto& t = s.faces[targets[i]];
       const double d2 =
           kernel::point_triangle_distance2(p, s.position[t[0]], s.position[t[1]], s.position[t[2]]);
-      if (d2 < best) {
+      if (d2 < best || (d2 == best && i < best_i)) {
         best = d2;
-        best_f = f;
+        best_root = std::sqrt(d2);
+        best_i = i;
       }
+    };
+    if (first < targets.size()) consider(first);
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      if (i == first) continue;
+      // |p - centre| - radius is a lower bound on the distance; the margin covers its rounding.
+      const double dc = norm(p - centre[i]);
+      if (dc - radius[i] > best_root * (1 + 1e-9) + 1e-12 * (dc + radius[i])) continue;
+      consider(i);
     }
     worst2 = std::max(worst2, best);
-    moves.emplace_back(w, best_f);
+    moves.emplace_back(w, best_i < targets.size() ? targets[best_i] : kInvalid);
     return best <= bound2;
   };
-  if (extra != kInvalid && !s.is_witness[extra] && !place(extra)) return false;
+  if (extra != kInvalid && !s.is_witness[extra] && !place(extra, targets.size())) return false;
   for (Index f : from) {
+    const auto own = std::find(targets.begin(), targets.end(), f);
+    const std::size_t first = static_cast<std::size_t>(own - targets.begin());
     for (Index w = s.face_witness[f]; w != kInvalid; w = s.witness_next[w]) {
-      if (!place(w)) return false;
+      if (!place(w, first)) return false;
     }
   }
   for (Index f : from) s.face_witness[f] = kInvalid;
