@@ -3,7 +3,7 @@
 // ship_449_patches.iges and dtmb5415.iges cut at z = 0, meshed by mesh_structured with automatic
 // blocks to about 2,000, 8,000 and 32,000 panels at 1 and 2 threads (items/s: output panels per
 // second). Each surface is prepared once per size, untimed, as `hullmesh structured` prepares it:
-// 20 fine triangles per panel (40,000 to 1,000,000), tessellated, merged, cut at the waterline,
+// 10 fine triangles per panel (20,000 to 1,000,000), tessellated, merged, cut at the waterline,
 // its features found and a HullQuery built on it. Then one strip zip (zip_chains) on its own.
 // After the runs, main() prints, from the runs just made, the 1 -> 2 thread speed-up per hull and
 // size and whether both thread counts gave the same mesh (they must: the mesher is documented as
@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/prepare_hull.h"
 #include "cli/tune_allocator.h"
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
@@ -36,9 +37,6 @@
 
 namespace hm {
 namespace {
-
-// As `hullmesh structured` sizes its internal surface (src/cli/command_structured.cpp).
-constexpr std::size_t kFinePerPanel = 20, kFineMin = 40'000, kFineMax = 1'000'000;
 
 // A hull to mesh: its patches and the waterline it is cut at (m, its own frame).
 struct Source {
@@ -86,8 +84,8 @@ const Wetted& wetted(std::size_t source, std::size_t panels) {
   const Source& src = sources()[source];
   auto w = std::make_unique<Wetted>();
   TessellateOptions o;
-  o.edge_length = edge_length_for_triangles(src.patches,
-                                            std::clamp(kFinePerPanel * panels, kFineMin, kFineMax));
+  // As `hullmesh structured` sizes its internal surface.
+  o.edge_length = edge_length_for_triangles(src.patches, cli::structured_fine_triangles(panels));
   const Tessellation t = tessellate(src.patches, o, silent_progress());
   const MergedSurface merged = merge_patches(src.patches, t.mesh, {}, silent_progress());
   PlaneCutOptions co;

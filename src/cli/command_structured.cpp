@@ -33,10 +33,6 @@
 namespace hm::cli {
 namespace {
 
-// Fine triangles per panel for the internal surface the rows are cut from.
-constexpr std::size_t kRowFinePerPanel = 10;
-constexpr std::size_t kRowFineMin = 20'000, kRowFineMax = 1'000'000;
-
 struct StructuredCommand {
   std::string file, output, units, blocks, size;
   bool auto_blocks = false;
@@ -86,9 +82,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   // mesher tries twice more, twice as dense, before it gives up on a merge (issue 4's open
   // failures; npl_round_bilge.iges passes at 80,000 triangles, and fails at most counts below).
   pa.finer_retries = 2;
-  pa.fine_triangles = c.triangles > 0 ? c.triangles
-                                      : std::clamp(kRowFinePerPanel * c.structured.target_panels,
-                                                   kRowFineMin, kRowFineMax);
+  pa.fine_triangles =
+      c.triangles > 0 ? c.triangles : structured_fine_triangles(c.structured.target_panels);
   PreparedHull ph;
   prepare_hull(pa, ph);
   const bool mirror = !heeled && (c.symmetry == "full" || (c.symmetry == "auto" && !ph.file_half));
@@ -314,7 +309,7 @@ void register_structured(CLI::App& app, const GlobalOptions& global, Action& act
                   "Dihedral angle in degrees above which an edge may be a knuckle")
       ->check(CLI::Range(1.0, 179.0));
   cmd->add_option("--triangles", c->triangles,
-                  "Fine triangles of the internal surface (default 20 per panel, 40k to 1M)")
+                  "Fine triangles of the internal surface (default 10 per panel, 20k to 1M)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{50'000'000}));
   cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
       ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));

@@ -3,6 +3,8 @@
 // plane, and find its knuckles and boundaries.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
@@ -20,6 +22,12 @@
 #include "unstructured/merge.h"
 
 namespace hm::cli {
+
+// Fine triangles of the structured mesher's internal surface for a panel target (the rows are
+// cut from it and refined on the NURBS): 10 per panel, within [20,000, 1,000,000].
+inline std::size_t structured_fine_triangles(std::size_t panels) {
+  return std::clamp<std::size_t>(10 * panels, 20'000, 1'000'000);
+}
 
 struct PrepareArgs {
   std::string file, units;
