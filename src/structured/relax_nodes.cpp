@@ -17,11 +17,14 @@ namespace {
 // Share of the gap to a row neighbour that a node keeps clear of.
 constexpr double kKeepClear = 0.15;
 
-// The arc length of the point of c nearest q, searched over [lo, hi].
+// The arc length of the point of c nearest q, searched over [lo, hi]: the segments that meet
+// [lo, hi] are a run of the ascending arc lengths, found by bisection.
 double nearest_on_curve(const RowCurve& c, const Vec3d& q, double lo, double hi) {
   double best_s = lo, best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-    if (c.s[k + 1] < lo || c.s[k] > hi) continue;
+  if (c.points.size() < 2) return best_s;
+  const std::size_t first =
+      static_cast<std::size_t>(std::lower_bound(c.s.begin() + 1, c.s.end(), lo) - c.s.begin()) - 1;
+  for (std::size_t k = first; k + 1 < c.points.size() && c.s[k] <= hi; ++k) {
     const Vec3d d = c.points[k + 1] - c.points[k];
     const double dd = squared_norm(d);
     double f = dd > 0 ? std::clamp(dot(q - c.points[k], d) / dd, 0.0, 1.0) : 0.0;
@@ -77,7 +80,8 @@ void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span
       const NodeSlot& n = slots[v];
       new_s[v] = n.s;
       if (n.fixed || prev[v] == kInvalid || next[v] == kInvalid) return;
-      std::vector<Index> around(nbr.begin() + count[v], nbr.begin() + count[v + 1]);
+      thread_local std::vector<Index> around;
+      around.assign(nbr.begin() + count[v], nbr.begin() + count[v + 1]);
       std::sort(around.begin(), around.end());
       around.erase(std::unique(around.begin(), around.end()), around.end());
       if (around.empty()) return;
@@ -154,12 +158,30 @@ std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
     for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
       area[around[i]] = face_area(positions, faces[around[i]]);
   };
+  // A node is tried again only after something its trials read has moved: the corners of its
+  // faces and of their edge neighbours, and its row neighbours (the bounds of its steps). Trying
+  // it again before would give the same answer (it stays), so the passes are the same as trying
+  // every node every time.
+  std::vector<std::uint8_t> stale(nv, 1);
+  auto touch = [&](std::size_t u) {
+    stale[u - 1] = stale[u + 1] = 1;
+    for (std::uint32_t i = start[u]; i < start[u + 1]; ++i) {
+      const Index f = around[i];
+      for (int c = 0; c < corner_count(faces[f]); ++c) {
+        for (std::uint32_t j = start[faces[f][c]]; j < start[faces[f][c] + 1]; ++j) {
+          const Face& g = faces[around[j]];
+          for (int k = 0; k < corner_count(g); ++k) stale[g[k]] = 1;
+        }
+      }
+    }
+  };
   std::size_t moves = 0;
   for (int pass = 0; pass < passes; ++pass) {
     std::size_t moved = 0;
     for (std::size_t v = 0; v < nv; ++v) {
       const NodeSlot& n = slots[v];
-      if (n.fixed || n.row == kInvalid || v == 0 || v + 1 >= nv) continue;
+      if (n.fixed || n.row == kInvalid || v == 0 || v + 1 >= nv || !stale[v]) continue;
+      stale[v] = 0;
       const NodeSlot& a = slots[v - 1];
       const NodeSlot& b = slots[v + 1];
       // Its row neighbours are the vertices beside it (rows are numbered node by node).
@@ -178,7 +200,10 @@ std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
         }
       }
       set(v, best_s);
-      if (best_s != s0) ++moved;
+      if (best_s != s0) {
+        ++moved;
+        touch(v);
+      }
     }
     moves += moved;
     if (moved == 0) break;
