@@ -144,6 +144,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   if (ph.floating) qo.waterline_z = 0;
   // No panel may pass through another (a panel code cannot integrate over such a surface): a
   // hard rule of the report, and a warning naming the patches.
+  report_surface_crossings(ph, g.quiet);
   measure_panel_crossings(c.file, ph.patches(), *output, g.quiet, qo);
   const QualityReport quality = assess_quality(*output, qo);
   std::optional<HydrostaticsPair> hydro;

@@ -186,6 +186,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   if (floating) qo.waterline_z = 0;
   // No panel may pass through another (a panel code cannot integrate over such a surface): a
   // hard rule of the report, and a warning naming the patches.
+  report_surface_crossings(ph, g.quiet);
   measure_panel_crossings(c.file, patches, *output, g.quiet, qo);
   const QualityReport quality = assess_quality(*output, qo);
   // The mesh's hydrostatics against the exact NURBS at the same position: the direct measure of

@@ -216,11 +216,13 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
                         "`hullmesh merge` writes the surface for inspection");
   // Two patches through each other (an appendage left untrimmed), or a fold the merge left. The
   // meshers check their panels for the same before writing; here the fine faces name the patches.
-  const std::string crossings =
-      describe_crossings(args.file, patches, fine, measure_crossings(fine), "the merged surface");
-  if (!crossings.empty() && !args.quiet) {
-    std::fprintf(stderr, "hullmesh: warning: %s\n", crossings.c_str());
-  }
+  // Nothing downstream reads it, so it runs beside the meshing (in the cores the mesher's serial
+  // steps leave idle).
+  out.crossing_check = std::make_unique<BackgroundTask>([&out, file = args.file, patches] {
+    const SurfaceMesh& surface = out.fine();
+    out.crossing_warning = describe_crossings(file, patches, surface, measure_crossings(surface),
+                                              "the merged surface");
+  });
   // What the meshers are given: a merge fault in a part a cut takes away is not passed on.
   if (args.validate) {
     const bool cut = out.top_cut || out.waterplane_cut || out.centre_cut;
@@ -228,6 +230,14 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
   }
   out.features = find_features(fine, out.adjacency, patches, features);
   out.seconds_features = seconds_since(t1);
+}
+
+void report_surface_crossings(PreparedHull& hull, bool quiet) {
+  if (!hull.crossing_check) return;
+  hull.crossing_check->wait();
+  if (!hull.crossing_warning.empty() && !quiet) {
+    std::fprintf(stderr, "hullmesh: warning: %s\n", hull.crossing_warning.c_str());
+  }
 }
 
 void measure_panel_crossings(const std::string& file, std::span<const Patch> patches,

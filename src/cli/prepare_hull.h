@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "cli/floating_options.h"
 #include "cli/knuckle_hints.h"
+#include "core/parallel.h"
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
 #include "quality/hydrostatics.h"
@@ -67,6 +69,11 @@ struct PreparedHull {
   FeatureSet features;                   // of fine()
   double seconds_import = 0, seconds_features = 0;
   std::size_t retried_triangles = 0;  // the fine triangle count of the last retry, 0 when none
+  // The check of fine() for faces through each other, which only warns: prepare_hull starts it
+  // beside the meshing and report_surface_crossings takes its result. The last member, so that
+  // it is joined before what it reads goes.
+  std::string crossing_warning;
+  std::unique_ptr<BackgroundTask> crossing_check;
 
   PreparedHull() = default;
   PreparedHull(const PreparedHull&) = delete;
@@ -88,6 +95,10 @@ struct PreparedHull {
 // first. Throws whatever import, merge and the cuts throw; GeometryError (exit 5) when the merged
 // surface is not edge-manifold, naming where.
 void prepare_hull(const PrepareArgs& args, PreparedHull& out);
+
+// Waits for the merged surface's crossing check and, unless quiet, prints its warning. The
+// meshing commands call it before they write (it rethrows what the check threw).
+void report_surface_crossings(PreparedHull& hull, bool quiet);
 
 // The panels checked for faces that pass through each other: the count and the first place go
 // into `qo` for the report's hard rule, and unless quiet a warning names the patches.

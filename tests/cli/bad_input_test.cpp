@@ -139,6 +139,12 @@ TEST(CliBadInput, BrokenPatchesAreNamedByEntity) {
        {"warning: ", "plate.igs: the merged surface passes through itself",
         "pairs of faces cross, the first of patch ", "(DE ", ") and patch ",
         "the panel mesh passes through itself"}},
+      // The structured mesher checks the merged surface beside its meshing, and still warns.
+      {"a patch through the hull, structured",
+       "structured --panels 300 " + q(plate) + out,
+       0,
+       {"warning: ", "plate.igs: the merged surface passes through itself",
+        "pairs of faces cross, the first of patch "}},
   };
   for (const Row& r : rows) {
     SCOPED_TRACE(r.what);
