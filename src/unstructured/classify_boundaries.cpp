@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <utility>
 
 #include "core/bbox.h"
+#include "core/parallel.h"
 
 namespace hm::detail {
 namespace {
@@ -19,40 +21,129 @@ constexpr double kTransomEndReach = 0.25;  // of L, from either x end of the sur
 constexpr double kTransomMinSpan = 0.01;   // of L, the diagonal of a transom run's box
 constexpr double kDeckTolerance = 0.05;    // of the z extent, below the local top
 constexpr int kProfileSlabs = 256;         // x slabs of the top profile
+constexpr std::size_t kChunk = 1 << 16;    // faces per task of the top profile
+constexpr double kEndShrink = 1e-6;        // of L, off each end of an edge's x range
 
-// Highest z of the surface in slabs of x: the deck edge is at the top of its slab.
+// Whether some part of the surface with x in [lo, hi] stands above z (m, mesh frame).
+struct TopQuestion {
+  double lo, hi, z;
+};
+
+// Answers TopQuestions exactly, not widened by a slab either side: a deck edge that ends where
+// the side beside it rises (a raised forecastle's end) has nothing above it up to the step. One
+// pass over the faces lists, per slab of x, the faces standing higher than the lowest question
+// touching that slab (on a clean hull, next to none); each question then clips the faces of its
+// slabs, highest first, until one stands higher or none can.
 class TopProfile {
  public:
-  TopProfile(std::span<const Vec3d> positions, const BBox3d& box)
-      : x0_(box.lo.x),
-        width_(std::max(box.extent().x, std::numeric_limits<double>::min()) / kProfileSlabs),
-        zmax_(kProfileSlabs, -std::numeric_limits<double>::infinity()) {
-    for (const Vec3d& p : positions) {
-      double& z = zmax_[slab(p.x)];
-      z = std::max(z, p.z);
-    }
-  }
+  TopProfile(const SurfaceMesh& mesh, const BBox3d& box)
+      : positions_(mesh.positions),
+        faces_(mesh.faces),
+        x0_(box.lo.x),
+        inv_width_(kProfileSlabs / std::max(box.extent().x, std::numeric_limits<double>::min())) {}
 
-  // Highest z over the slabs covering [xa, xb] and one slab either side.
-  double top_near(double xa, double xb) const {
-    const int lo = std::max(0, slab(std::min(xa, xb)) - 1);
-    const int hi = std::min(kProfileSlabs - 1, slab(std::max(xa, xb)) + 1);
-    return *std::max_element(zmax_.begin() + lo, zmax_.begin() + hi + 1);
+  // Answers, in order (1: something stands higher).
+  std::vector<std::uint8_t> higher_than(std::span<const TopQuestion> questions) const {
+    std::vector<std::uint8_t> answer(questions.size(), 0);
+    if (questions.empty()) return answer;
+    std::vector<double> lowest(kProfileSlabs, std::numeric_limits<double>::infinity());
+    for (const TopQuestion& t : questions) {
+      for (int k = slab(t.lo); k <= slab(t.hi); ++k) lowest[k] = std::min(lowest[k], t.z);
+    }
+    const double lowest_any = *std::min_element(lowest.begin(), lowest.end());
+    // Chunks of faces in parallel, each listing its own, joined in chunk order: the lists come
+    // out in face order whatever the thread count.
+    const std::size_t chunks = (faces_.size() + kChunk - 1) / kChunk;
+    std::vector<std::vector<std::vector<Entry>>> part(chunks);
+    parallel_for(
+        0, chunks,
+        [&](std::size_t c) {
+          std::vector<std::vector<Entry>>& out = part[c];
+          out.resize(kProfileSlabs);
+          const std::size_t end = std::min(faces_.size(), (c + 1) * kChunk);
+          for (std::size_t f = c * kChunk; f < end; ++f) {
+            const Face& face = faces_[f];
+            const int n = corner_count(face);
+            double top = -std::numeric_limits<double>::infinity();
+            for (int i = 0; i < n; ++i) top = std::max(top, positions_[face[i]].z);
+            if (top <= lowest_any) continue;
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (int i = 0; i < n; ++i) {
+              lo = std::min(lo, positions_[face[i]].x);
+              hi = std::max(hi, positions_[face[i]].x);
+            }
+            for (int k = slab(lo), last = slab(hi); k <= last; ++k) {
+              if (top > lowest[k]) out[k].push_back({top, static_cast<Index>(f)});
+            }
+          }
+        },
+        1, 2);
+    std::vector<std::vector<Entry>> higher(kProfileSlabs);
+    for (const auto& p : part) {
+      for (int k = 0; k < kProfileSlabs; ++k)
+        higher[k].insert(higher[k].end(), p[k].begin(), p[k].end());
+    }
+    for (std::vector<Entry>& list : higher) {
+      std::sort(list.begin(), list.end(), [](const Entry& a, const Entry& b) {
+        return a.top != b.top ? a.top > b.top : a.face < b.face;
+      });
+    }
+    for (std::size_t q = 0; q < questions.size(); ++q) {
+      const TopQuestion& t = questions[q];
+      for (int k = slab(t.lo); k <= slab(t.hi) && !answer[q]; ++k) {
+        for (const Entry& e : higher[k]) {
+          if (e.top <= t.z) break;
+          if (clipped_top(faces_[e.face], t.lo, t.hi) > t.z) {
+            answer[q] = 1;
+            break;
+          }
+        }
+      }
+    }
+    return answer;
   }
 
  private:
+  struct Entry {
+    double top;  // highest z of the face
+    Index face;
+  };
+
   int slab(double x) const {
-    return std::clamp(static_cast<int>(std::floor((x - x0_) / width_)), 0, kProfileSlabs - 1);
+    return std::clamp(static_cast<int>(std::floor((x - x0_) * inv_width_)), 0, kProfileSlabs - 1);
   }
 
-  double x0_, width_;
-  std::vector<double> zmax_;
+  // Highest z of the face's part with x in [lo, hi] (-inf when none): z is linear on a flat
+  // face, so it peaks at a corner of the clipped polygon, a corner in the interval or where an
+  // edge crosses x = lo or x = hi.
+  double clipped_top(const Face& f, double lo, double hi) const {
+    double top = -std::numeric_limits<double>::infinity();
+    const int n = corner_count(f);
+    for (int i = 0; i < n; ++i) {
+      const Vec3d& p = positions_[f[i]];
+      const Vec3d& q = positions_[f[(i + 1) % n]];
+      if (p.x >= lo && p.x <= hi) top = std::max(top, p.z);
+      for (double x : {lo, hi}) {
+        if ((p.x < x && x < q.x) || (q.x < x && x < p.x)) {
+          top = std::max(top, p.z + (q.z - p.z) * ((x - p.x) / (q.x - p.x)));
+        }
+      }
+    }
+    return top;
+  }
+
+  std::span<const Vec3d> positions_;
+  std::span<const Face> faces_;
+  double x0_, inv_width_;
 };
 
-// What one boundary edge is by itself; transom edges need their run (see classify).
+// What one boundary edge is by itself; transom edges need their run (see classify), and a deck
+// edge candidate the answer to its question (nothing higher: deck edge, else hole).
 struct EdgeVerdict {
   BoundaryKind kind = BoundaryKind::kHole;  // kind unless it joins a transom run
   bool transom_candidate = false;
+  bool deck_candidate = false;
+  TopQuestion question{};
 };
 
 struct Context {
@@ -61,7 +152,6 @@ struct Context {
   const FeatureOptions& options;
   double length;
   BBox3d box;
-  TopProfile top;
 };
 
 EdgeVerdict judge_edge(const Context& c, Index e) {
@@ -82,10 +172,13 @@ EdgeVerdict judge_edge(const Context& c, Index e) {
   v.transom_candidate =
       std::abs(d.x) <= kTransomMaxDx * norm(d) && std::abs(n.x) < kTransomMaxFaceNx;
   const double zmid = 0.5 * (p0.z + p1.z);
-  const bool face_below = face_centroid(c.mesh.positions, face).z < zmid;
+  v.deck_candidate = face_centroid(c.mesh.positions, face).z < zmid;  // its face below it
+  // Asked over the edge's own x range, shrunk off its ends by a hair so that a side rising from
+  // the edge's end point does not count as standing above it (a range of one x stays one x).
+  const double xa = std::min(p0.x, p1.x), xb = std::max(p0.x, p1.x);
+  const double shrink = std::min(kEndShrink * c.length, 0.25 * (xb - xa));
   const double deck_tol = kDeckTolerance * c.box.extent().z;
-  const bool on_top = std::max(p0.z, p1.z) >= c.top.top_near(p0.x, p1.x) - deck_tol;
-  v.kind = face_below && on_top ? BoundaryKind::kDeckEdge : BoundaryKind::kHole;
+  v.question = {xa + shrink, xb - shrink, std::max(p0.z, p1.z) + deck_tol};
   return v;
 }
 
@@ -138,10 +231,9 @@ bool is_transom_run(const Context& c, const BoundaryLoop& loop, std::size_t star
   return at_end && run.diagonal() >= kTransomMinSpan * c.length;
 }
 
-void classify_loop(const Context& c, const BoundaryLoop& loop, std::vector<BoundaryKind>& kind) {
+void classify_loop(const Context& c, const BoundaryLoop& loop, std::span<const EdgeVerdict> verdict,
+                   std::vector<BoundaryKind>& kind) {
   const std::size_t n = loop.edges.size();
-  std::vector<EdgeVerdict> verdict(n);
-  for (std::size_t i = 0; i < n; ++i) verdict[i] = judge_edge(c, loop.edges[i]);
   bool whole = false;
   const auto runs = runs_of(
       n, loop.closed,
@@ -169,10 +261,29 @@ std::vector<BoundaryKind> classify_boundary_edges(const SurfaceMesh& mesh,
                                                   const FeatureOptions& options, double length) {
   BBox3d box;
   for (const Vec3d& p : mesh.positions) box.add(p);
-  const Context c{mesh, adjacency, options, length, box, TopProfile(mesh.positions, box)};
-  std::vector<BoundaryKind> kind(adjacency.edges.size(), BoundaryKind::kHole);
+  const Context c{mesh, adjacency, options, length, box};
   // Loops are few and short next to the mesh; serial keeps the run logic plain.
-  for (const BoundaryLoop& loop : adjacency.boundary_loops) classify_loop(c, loop, kind);
+  // Judge every edge; ask the deck candidates' questions at once; classify loop by loop.
+  std::vector<std::vector<EdgeVerdict>> verdicts;
+  std::vector<TopQuestion> questions;
+  for (const BoundaryLoop& loop : adjacency.boundary_loops) {
+    std::vector<EdgeVerdict>& v = verdicts.emplace_back();
+    for (Index e : loop.edges) {
+      v.push_back(judge_edge(c, e));
+      if (v.back().deck_candidate) questions.push_back(v.back().question);
+    }
+  }
+  const std::vector<std::uint8_t> higher = TopProfile(mesh, box).higher_than(questions);
+  std::size_t q = 0;
+  for (std::vector<EdgeVerdict>& loop : verdicts) {
+    for (EdgeVerdict& v : loop) {
+      if (v.deck_candidate) v.kind = higher[q++] ? BoundaryKind::kHole : BoundaryKind::kDeckEdge;
+    }
+  }
+  std::vector<BoundaryKind> kind(adjacency.edges.size(), BoundaryKind::kHole);
+  for (std::size_t l = 0; l < verdicts.size(); ++l) {
+    classify_loop(c, adjacency.boundary_loops[l], verdicts[l], kind);
+  }
   return kind;
 }
 

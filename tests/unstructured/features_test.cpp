@@ -265,6 +265,49 @@ TEST(Features, OpenTransomIsATransomEdge) {
   EXPECT_EQ(f.knuckles.size(), 1u);
 }
 
+// A sheer that steps up: aft of a grid column near x = 20 m the side ends at a grid row near
+// z = 4 m, forward of it it rises to the deck (D = 8 m), and the column between is open (a
+// raised forecastle's end, as ship_449_patches.iges has at x = -48.5 m). The low rim is a deck
+// edge right up to the step: nothing stands above it, although the side beside it (forward, in
+// the same x slab) is twice as high.
+TEST(Features, LowSheerBesideAStepUpIsDeckEdgeUpToTheStep) {
+  const Hull& h = hull(HullKind::kWigley);
+  SurfaceMesh m = h.tess.mesh;
+  double xs = 0, zc = 0, bx = INFINITY, bz = INFINITY;
+  for (const Vec3d& p : m.positions) {
+    if (std::abs(p.x - 20.0) < bx) bx = std::abs(p.x - 20.0), xs = p.x;
+    if (std::abs(p.z - 4.0) < bz) bz = std::abs(p.z - 4.0), zc = p.z;
+  }
+  std::vector<Face> faces;
+  std::vector<PatchId> face_patch;
+  for (std::size_t t = 0; t < m.faces.size(); ++t) {
+    const Vec3d c = face_centroid(m.positions, m.faces[t]);
+    if (c.x < xs && c.z > zc) continue;
+    faces.push_back(m.faces[t]);
+    face_patch.push_back(m.face_patch[t]);
+  }
+  m.faces = faces;
+  m.face_patch = face_patch;
+  const EdgeAdjacency adjacency = build_edge_adjacency(m.faces, m.vertex_count());
+  const FeatureSet f = find_features(m, adjacency, h.generated.patches, {});
+  auto n = edges_by_kind(f);
+  EXPECT_EQ(n[BoundaryKind::kHole], 0u);
+  EXPECT_GT(n[BoundaryKind::kTransomEdge], 0u);  // the step's column
+  std::size_t low_rim = 0;
+  for (const BoundaryRun& r : f.boundaries) {
+    for (std::size_t i = 0; i + 1 < r.vertices.size(); ++i) {
+      const Vec3d& a = m.positions[r.vertices[i]];
+      const Vec3d& b = m.positions[r.vertices[i + 1]];
+      if (std::abs(a.z - zc) > 1e-9 || std::abs(b.z - zc) > 1e-9 || a.y < 1e-6 || b.y < 1e-6) {
+        continue;
+      }
+      ++low_rim;
+      EXPECT_EQ(r.kind, BoundaryKind::kDeckEdge) << "x " << a.x << " .. " << b.x;
+    }
+  }
+  EXPECT_GT(low_rim, 4u);
+}
+
 TEST(Features, WaterlineCutBoundaryIsWaterline) {
   // Dropping every face above z = 3 m leaves a ragged rim; the rim vertices on z = 3 exactly
   // (a grid row there) make waterline edges when the option names that z.
