@@ -171,8 +171,12 @@ EdgeVerdict judge_edge(const Context& c, Index e) {
   EdgeVerdict v;
   v.transom_candidate =
       std::abs(d.x) <= kTransomMaxDx * norm(d) && std::abs(n.x) < kTransomMaxFaceNx;
-  const double zmid = 0.5 * (p0.z + p1.z);
-  v.deck_candidate = face_centroid(c.mesh.positions, face).z < zmid;  // its face below it
+  // Its face below it: the centroid below the edge's line, measured square to the edge (a
+  // centroid below the edge's mid-height is not enough where the edge rises: the last sliver
+  // of a fan at a patch tip lies along a rising sheer, its centroid near the upper end).
+  const Vec3d off = face_centroid(c.mesh.positions, face) - p0;
+  const double dd = dot(d, d);
+  v.deck_candidate = (dd > 0 ? off - (dot(off, d) / dd) * d : off).z < 0;
   // Asked over the edge's own x range, shrunk off its ends by a hair so that a side rising from
   // the edge's end point does not count as standing above it (a range of one x stays one x).
   const double xa = std::min(p0.x, p1.x), xb = std::max(p0.x, p1.x);

@@ -15,6 +15,7 @@
 #include "nurbs/generate_hull.h"
 #include "support/test_support.h"
 #include "tessellate/tessellate.h"
+#include "unstructured/classify_boundaries.h"
 
 namespace hm {
 namespace {
@@ -306,6 +307,33 @@ TEST(Features, LowSheerBesideAStepUpIsDeckEdgeUpToTheStep) {
     }
   }
   EXPECT_GT(low_rim, 4u);
+}
+
+// The last sliver of a fan at a patch tip, along a rising sheer: its third corner lies just
+// below the edge, near its upper end, so its centroid stands above the edge's mid-height
+// (kcs.iges at 128,000 triangles, x = -1.76 m: 1 cm of its deck edge was a hole). Below the
+// edge's line, square to it, is what makes a deck edge.
+TEST(Features, RisingSheerOverATipSliverIsDeckEdge) {
+  SurfaceMesh m;
+  m.positions = {{0, 1, 1}, {1, 1, 1.3}, {0.98, 1, 1.29}, {0, 1, 0}, {1, 1, 0}};  // off y = 0
+  m.faces = {{0, 2, 1, kInvalid}, {0, 3, 2, kInvalid}, {2, 3, 4, kInvalid}, {2, 4, 1, kInvalid}};
+  m.face_patch.assign(m.faces.size(), 0);
+  const EdgeAdjacency adjacency = build_edge_adjacency(m.faces, m.vertex_count());
+  const std::vector<BoundaryKind> kind =
+      detail::classify_boundary_edges(m, adjacency, FeatureOptions{}, 1.3);
+  std::size_t checked = 0;
+  for (std::size_t e = 0; e < adjacency.edges.size(); ++e) {
+    const MeshEdge& me = adjacency.edges[e];
+    if (me.v0 == 0 && me.v1 == 1) {
+      EXPECT_EQ(kind[e], BoundaryKind::kDeckEdge);  // the sheer, over the sliver
+      ++checked;
+    }
+    if (me.v0 == 3 && me.v1 == 4) {
+      EXPECT_EQ(kind[e], BoundaryKind::kHole);  // the lower rim, its faces above it
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 2u);
 }
 
 TEST(Features, WaterlineCutBoundaryIsWaterline) {
