@@ -29,186 +29,17 @@
 
 #include "mesh/adjacency.h"
 #include "query/hull_query.h"
+#include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
 namespace {
 
-// A panel is distorted past these (the rules themselves; the scores use kSideTarget and
-// kAreaTarget, a little inside them).
-constexpr double kSideLimit = 4, kAreaLimit = 2;
 // A boundary node may merge along the boundary only where it turns by less than this (degrees):
 // elsewhere it is a corner of the hull's outline.
 constexpr double kStraightDeg = 20;
 // How far along N the inner side moves (repair 2).
 constexpr double kExtendSteps[] = {0.15, 0.3};
-
-// The mesh as the repairs change it: faces (kInvalid in slot 0: removed), vertex -> faces, and
-// positions. Small local edits; queries read it as it stands.
-class Editable {
- public:
-  Editable(std::vector<Face>& faces, std::vector<Vec3d>& positions)
-      : faces_(faces), positions_(positions), around_(positions.size()) {
-    for (std::size_t f = 0; f < faces.size(); ++f)
-      for (int c = 0; c < corner_count(faces[f]); ++c)
-        around_[faces[f][c]].insert(static_cast<Index>(f));
-  }
-
-  const Face& face(Index f) const { return faces_[f]; }
-  bool removed(Index f) const { return faces_[f][0] == kInvalid; }
-  const std::set<Index>& around(Index v) const { return around_[v]; }
-  const Vec3d& position(Index v) const { return positions_[v]; }
-
-  // The face other than f that has the side a-b; kInvalid when none (a free side).
-  Index across(Index f, Index a, Index b) const {
-    for (Index g : around_[a]) {
-      if (g == f || removed(g)) continue;
-      const Face& h = faces_[g];
-      const int n = corner_count(h);
-      for (int c = 0; c < n; ++c) {
-        const Index x = h[c], y = h[(c + 1) % n];
-        if ((x == a && y == b) || (x == b && y == a)) return g;
-      }
-    }
-    return kInvalid;
-  }
-
-  // The worst rule value, over its yardstick, of the faces in `core` and their neighbours' area
-  // ratios.
-  double worst(const std::set<Index>& core) const {
-    double w = 0;
-    for (Index f : core) {
-      if (removed(f)) continue;
-      if (!(face_area(positions_, faces_[f]) > 0)) return std::numeric_limits<double>::infinity();
-      double side = 0, area = 0;
-      rules(f, side, area);
-      w = std::max({w, side / kSideTarget, area / kAreaTarget});
-    }
-    return w;
-  }
-
-  // A candidate's score: the panels failing a rule among `core` and the faces beside them (the
-  // rule shares are what panel codes are judged by), then the worst rule value over `core`.
-  struct Score {
-    std::size_t fails = 0;
-    double worst = 0;
-    bool better_than(const Score& o) const {
-      return fails != o.fails ? fails < o.fails : worst < o.worst - 1e-9;
-    }
-  };
-  Score score(const std::set<Index>& core) const {
-    Score sc;
-    sc.worst = worst(core);
-    std::set<Index> near = core;
-    for (Index f : core) {
-      if (removed(f)) continue;
-      const Face& h = faces_[f];
-      const int n = corner_count(h);
-      for (int c = 0; c < n; ++c) {
-        const Index g = across(f, h[c], h[(c + 1) % n]);
-        if (g != kInvalid) near.insert(g);
-      }
-    }
-    for (Index f : near) {
-      if (removed(f)) continue;
-      double side = 0, area = 0;
-      rules(f, side, area);
-      sc.fails += side > kSideLimit || area > kAreaLimit;
-    }
-    return sc;
-  }
-
-  // The quad side ratio (1 for a triangle) and the largest area ratio to a neighbour of face f.
-  void rules(Index f, double& side, double& area) const {
-    const Face& h = faces_[f];
-    side = is_triangle(h) ? 1 : side_ratio(positions_, h);
-    area = 1;
-    const double a = face_area(positions_, h);
-    const int n = corner_count(h);
-    for (int c = 0; c < n; ++c) {
-      const Index g = across(f, h[c], h[(c + 1) % n]);
-      if (g == kInvalid) continue;
-      const double b = face_area(positions_, faces_[g]);
-      area = std::max(area, std::min(a, b) > 0 ? std::max(a, b) / std::min(a, b)
-                                               : std::numeric_limits<double>::infinity());
-    }
-  }
-
-  // No face in `core` repeats a corner, every side of them has at most two faces, and no two
-  // faces have the same corners.
-  bool manifold(const std::set<Index>& core) const {
-    for (Index f : core) {
-      if (removed(f)) continue;
-      const Face& h = faces_[f];
-      const int n = corner_count(h);
-      // A merge that brings two opposite corners of a quad together folds it.
-      for (int c = 0; c < n; ++c)
-        for (int d = c + 1; d < n; ++d)
-          if (h[c] == h[d]) return false;
-      for (int c = 0; c < n; ++c) {
-        const Index a = h[c], b = h[(c + 1) % n];
-        int users = 0;
-        for (Index g : around_[a]) {
-          if (removed(g)) continue;
-          const Face& k = faces_[g];
-          const int m = corner_count(k);
-          bool same_corners = g != f && m == n;
-          for (int i = 0; i < m; ++i) {
-            const Index x = k[i], y = k[(i + 1) % m];
-            users += (x == a && y == b) || (x == b && y == a);
-            same_corners = same_corners && std::find(h.begin(), h.begin() + n, x) != h.begin() + n;
-          }
-          if (same_corners) return false;
-        }
-        if (users > 2) return false;
-      }
-    }
-    return true;
-  }
-
-  Index add_face(const Face& h) {
-    faces_.push_back(h);
-    const Index f = static_cast<Index>(faces_.size() - 1);
-    for (int c = 0; c < corner_count(h); ++c) around_[h[c]].insert(f);
-    return f;
-  }
-  void pop_face() {
-    const Index f = static_cast<Index>(faces_.size() - 1);
-    set_face(f, {kInvalid, kInvalid, kInvalid, kInvalid});
-    faces_.pop_back();
-  }
-
-  void set_face(Index f, const Face& h) {
-    const Face old = faces_[f];
-    if (old[0] != kInvalid)
-      for (int c = 0; c < corner_count(old); ++c) around_[old[c]].erase(f);
-    faces_[f] = h;
-    if (h[0] != kInvalid)
-      for (int c = 0; c < corner_count(h); ++c) around_[h[c]].insert(f);
-  }
-  void set_position(Index v, const Vec3d& p) { positions_[v] = p; }
-
- private:
-  std::vector<Face>& faces_;
-  std::vector<Vec3d>& positions_;
-  std::vector<std::set<Index>> around_;
-};
-
-// Face h with vertex `from` renamed `to`, and a repeated corner dropped (a quad that loses a side
-// becomes a triangle; one that loses two, or a triangle that loses one, is removed).
-Face renamed(const Face& h, Index from, Index to) {
-  Index c[4];
-  int n = 0;
-  for (int k = 0; k < corner_count(h); ++k) {
-    const Index v = h[k] == from ? to : h[k];
-    if (n > 0 && c[n - 1] == v) continue;
-    c[n++] = v;
-  }
-  if (n > 1 && c[n - 1] == c[0]) --n;
-  if (n == 4) return {c[0], c[1], c[2], c[3]};
-  if (n == 3) return {c[0], c[1], c[2], kInvalid};
-  return {kInvalid, kInvalid, kInvalid, kInvalid};
-}
 
 }  // namespace
 
@@ -244,7 +75,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
     on_knuckle[e[0]] = on_knuckle[e[1]] = 1;
   }
 
-  Editable m(mesh.faces, mesh.positions);
+  EditableFaces m(mesh.faces, mesh.positions);
   const Index nf = static_cast<Index>(mesh.faces.size());
   std::vector<std::uint8_t> merged(nv, 0), done(nf, 0);
 
@@ -320,7 +151,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
     for (const Panel& p : run)
       for (Index v : {p.b0, p.b1, p.i0, p.i1})
         for (Index g : m.around(v)) scored.insert(g);
-    Editable::Score best = m.score(scored);
+    EditableFaces::Score best = m.score(scored);
     int best_kind = 0;  // 0: leave it; 1, 2, 3: the repair of that number
     double best_step = 0;
     std::vector<Face> best_split;
@@ -335,7 +166,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
       for (const Panel& p : run) {
         const Face q = m.face(p.f);
         Face pick0{}, pick1{};
-        Editable::Score pick{std::numeric_limits<std::size_t>::max(), 0};
+        EditableFaces::Score pick{std::numeric_limits<std::size_t>::max(), 0};
         for (int d = 0; d < 2; ++d) {
           const Face t0 =
               d == 0 ? Face{q[0], q[1], q[2], kInvalid} : Face{q[0], q[1], q[3], kInvalid};
@@ -345,7 +176,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
           const Index t = m.add_face(t1);
           std::set<Index> local = sc;
           local.insert(t);
-          const Editable::Score s3 = m.score(local);
+          const EditableFaces::Score s3 = m.score(local);
           m.pop_face();
           if (s3.better_than(pick)) {
             pick = s3;
@@ -360,7 +191,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
         chosen.push_back(pick0);
         chosen.push_back(pick1);
       }
-      const Editable::Score s3 = m.score(sc);
+      const EditableFaces::Score s3 = m.score(sc);
       for (std::size_t k = added.size(); k-- > 0;) m.pop_face();
       for (std::size_t k = 0; k < run.size(); ++k) m.set_face(run[k].f, quads[k]);
       // A split costs quads: it must leave fewer panels failing, not only a milder worst one.
@@ -390,7 +221,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
           const Vec3d far = inner[i].second / static_cast<double>(far_count[i]);
           m.set_position(i, query.closest_point(p0 + (far - p0) * step).point);
         }
-        const Editable::Score s2 = m.score(scored);
+        const EditableFaces::Score s2 = m.score(scored);
         if (s2.better_than(best)) {
           best = s2;
           best_kind = 2;
@@ -407,7 +238,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
         const std::set<Index> faces_of(m.around(i).begin(), m.around(i).end());
         for (Index g : faces_of) m.set_face(g, renamed(m.face(g), i, bf.first));
       }
-      Editable::Score s1{std::numeric_limits<std::size_t>::max(), 0};
+      EditableFaces::Score s1{std::numeric_limits<std::size_t>::max(), 0};
       if (m.manifold(scored)) s1 = m.score(scored);
       for (const auto& [g, h] : was) m.set_face(g, h);
       if (s1.better_than(best)) {
