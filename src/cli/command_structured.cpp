@@ -198,6 +198,9 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
           "  distorted border panels: %zu; repaired by removal %zu, by extension %zu, by a split "
           "%zu\n",
           r.border_distorted, r.border_removed, r.border_extended, r.border_split);
+    if (r.wedges_collapsed > 0)
+      std::printf("  wedge quads made triangles (a short side's ends merged): %zu\n",
+                  r.wedges_collapsed);
     if (r.edge_snaps > 0)
       std::printf(
           "  %zu border and knuckle nodes moved onto their patch edge curves (exact NURBS)\n",

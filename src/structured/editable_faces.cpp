@@ -2,11 +2,20 @@
 #include "structured/editable_faces.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numbers>
 
-#include "structured/structured_steps.h"
+#include "mesh/adjacency.h"
 
 namespace hm::structured {
+namespace {
+
+// A boundary node may merge along the boundary only where it turns by less than this (degrees):
+// elsewhere it is a corner of the hull's outline.
+constexpr double kStraightDeg = 20;
+
+}  // namespace
 
 EditableFaces::EditableFaces(std::vector<Face>& faces, std::vector<Vec3d>& positions)
     : faces_(faces), positions_(positions), around_(positions.size()) {
@@ -38,6 +47,19 @@ double EditableFaces::worst(const std::set<Index>& core) const {
     w = std::max({w, side / kSideTarget, area / kAreaTarget});
   }
   return w;
+}
+
+EditableFaces::Score EditableFaces::score(const std::set<Index>& core,
+                                          const std::set<Index>& judged) const {
+  Score sc;
+  sc.worst = worst(core);
+  for (Index f : judged) {
+    if (removed(f)) continue;
+    double side = 0, area = 0;
+    rules(f, side, area);
+    sc.fails += side > kSideLimit || area > kAreaLimit;
+  }
+  return sc;
 }
 
 EditableFaces::Score EditableFaces::score(const std::set<Index>& core) const {
@@ -130,6 +152,56 @@ Face renamed(const Face& h, Index from, Index to) {
   if (n == 4) return {c[0], c[1], c[2], c[3]};
   if (n == 3) return {c[0], c[1], c[2], kInvalid};
   return {kInvalid, kInvalid, kInvalid, kInvalid};
+}
+
+bool NodeFreedom::may_merge(Index i, Index b, std::span<const NodeSlot> slots) const {
+  if (on_knuckle[i]) return false;
+  if (movable[i]) return true;
+  return i < slots.size() && slots[i].row != kInvalid && straight[i] &&
+         boundary_edges.count({std::min(i, b), std::max(i, b)}) > 0;
+}
+
+NodeFreedom node_freedom(std::span<const NodeSlot> slots,
+                         std::span<const std::array<Index, 2>> knuckle_edges,
+                         const SurfaceMesh& mesh) {
+  const std::size_t nv = mesh.vertex_count();
+  NodeFreedom out;
+  out.movable.assign(nv, 0);
+  out.on_knuckle.assign(nv, 0);
+  out.straight.assign(nv, 0);
+  for (std::size_t v = 0; v < nv && v < slots.size(); ++v)
+    out.movable[v] = !slots[v].fixed && slots[v].row != kInvalid;
+  const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, nv);
+  const double straight_cos = std::cos(kStraightDeg * std::numbers::pi / 180);
+  for (const BoundaryLoop& l : adj.boundary_loops) {
+    const std::size_t n = l.vertices.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Index a = l.vertices[(k + n - 1) % n], v = l.vertices[k], b = l.vertices[(k + 1) % n];
+      out.movable[v] = 0;
+      out.boundary_edges.insert({std::min(v, b), std::max(v, b)});
+      const Vec3d da = mesh.positions[a] - mesh.positions[v];
+      const Vec3d db = mesh.positions[b] - mesh.positions[v];
+      const double c = dot(da, db) / std::max(norm(da) * norm(db), 1e-300);
+      out.straight[v] = c < -straight_cos;
+    }
+  }
+  for (const auto& e : knuckle_edges) {
+    out.movable[e[0]] = out.movable[e[1]] = 0;
+    out.on_knuckle[e[0]] = out.on_knuckle[e[1]] = 1;
+  }
+  return out;
+}
+
+void drop_removed_faces(SurfaceMesh& mesh) {
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (mesh.faces[f][0] == kInvalid) continue;
+    mesh.faces[kept] = mesh.faces[f];
+    mesh.face_block[kept] = mesh.face_block[f];
+    ++kept;
+  }
+  mesh.faces.resize(kept);
+  mesh.face_block.resize(kept);
 }
 
 }  // namespace hm::structured

@@ -3,12 +3,17 @@
 // the border-panel repairs and the wedge collapse share it.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <set>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "core/types.h"
 #include "core/vec.h"
 #include "mesh/surface_mesh.h"
+#include "structured/structured_steps.h"
 
 namespace hm::structured {
 
@@ -44,6 +49,9 @@ class EditableFaces {
     }
   };
   Score score(const std::set<Index>& core) const;
+  // The same with the failing panels counted over `judged`, a set fixed before the edits it
+  // compares (the faces beside `core` change as corners merge).
+  Score score(const std::set<Index>& core, const std::set<Index>& judged) const;
 
   // The quad side ratio (1 for a triangle) and the largest area ratio to a neighbour of face f.
   void rules(Index f, double& side, double& area) const;
@@ -76,5 +84,25 @@ class EditableFaces {
 // Face h with vertex `from` renamed `to`, and a repeated corner dropped (a quad that loses a side
 // becomes a triangle; one that loses two, or a triangle that loses one, is removed).
 Face renamed(const Face& h, Index from, Index to);
+
+// What a repair may do with each node of the panel mesh.
+struct NodeFreedom {
+  std::vector<std::uint8_t> movable;     // free row nodes off every boundary and knuckle
+  std::vector<std::uint8_t> on_knuckle;  // on a knuckle edge
+  std::vector<std::uint8_t> straight;    // on the boundary, which runs on straight through it
+  std::set<std::pair<Index, Index>> boundary_edges;  // (lower, higher) vertex
+
+  // Whether node i may merge into its neighbour b: a movable node may; so may a row's end node
+  // on the hull's boundary where the side i-b is a boundary edge and the boundary runs straight
+  // through i (the boundary loses a node and keeps its line: the keel, the waterline). Never a
+  // node on a knuckle.
+  bool may_merge(Index i, Index b, std::span<const NodeSlot> slots) const;
+};
+NodeFreedom node_freedom(std::span<const NodeSlot> slots,
+                         std::span<const std::array<Index, 2>> knuckle_edges,
+                         const SurfaceMesh& mesh);
+
+// Drops the faces a repair removed (kInvalid in slot 0), with their blocks, keeping the order.
+void drop_removed_faces(SurfaceMesh& mesh);
 
 }  // namespace hm::structured

@@ -188,6 +188,10 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   }
   rep.edge_snaps = snap_to_edge_curves(patches, surface, features, rows, slots, out.knuckle_edges,
                                        query.length_scale(), metric, mesh);
+  if (options.repair_border_panels) {
+    rep.wedges_collapsed =
+        collapse_wedges(slots, out.knuckle_edges, options.min_opposite_ratio, mesh);
+  }
 
   drop_unused_vertices(out);
   // The blocks' panel counts, as the repairs left them (a block's id is its place in the list).

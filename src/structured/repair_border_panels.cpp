@@ -35,9 +35,6 @@
 namespace hm::structured {
 namespace {
 
-// A boundary node may merge along the boundary only where it turns by less than this (degrees):
-// elsewhere it is a corner of the hull's outline.
-constexpr double kStraightDeg = 20;
 // How far along N the inner side moves (repair 2).
 constexpr double kExtendSteps[] = {0.15, 0.3};
 
@@ -48,33 +45,8 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
                                         SurfaceMesh& mesh) {
   BorderRepairCounts counts;
   const std::size_t nv = mesh.vertex_count();
-  // Nodes that may move or merge away: free row nodes off every boundary and knuckle.
-  std::vector<std::uint8_t> movable(nv, 0), on_knuckle(nv, 0);
-  for (std::size_t v = 0; v < nv && v < slots.size(); ++v)
-    movable[v] = !slots[v].fixed && slots[v].row != kInvalid;
-  // The hull's boundary edges: a row's end node on one may still merge along it (below).
-  std::set<std::pair<Index, Index>> free_edges;
-  std::vector<std::uint8_t> straight(nv, 0);  // on the boundary, which runs on straight through it
-  {
-    const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, nv);
-    for (const BoundaryLoop& l : adj.boundary_loops) {
-      const std::size_t n = l.vertices.size();
-      for (std::size_t k = 0; k < n; ++k) {
-        const Index a = l.vertices[(k + n - 1) % n], v = l.vertices[k], b = l.vertices[(k + 1) % n];
-        movable[v] = 0;
-        free_edges.insert({std::min(v, b), std::max(v, b)});
-        const Vec3d da = mesh.positions[a] - mesh.positions[v];
-        const Vec3d db = mesh.positions[b] - mesh.positions[v];
-        const double c = dot(da, db) / std::max(norm(da) * norm(db), 1e-300);
-        straight[v] = c < -std::cos(kStraightDeg * M_PI / 180);
-      }
-    }
-  }
-  for (const auto& e : knuckle_edges) {
-    movable[e[0]] = movable[e[1]] = 0;
-    on_knuckle[e[0]] = on_knuckle[e[1]] = 1;
-  }
-
+  const NodeFreedom freedom = node_freedom(slots, knuckle_edges, mesh);
+  const std::vector<std::uint8_t>& movable = freedom.movable;
   EditableFaces m(mesh.faces, mesh.positions);
   const Index nf = static_cast<Index>(mesh.faces.size());
   std::vector<std::uint8_t> merged(nv, 0), done(nf, 0);
@@ -205,12 +177,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
     // A removal may also merge a row's end node on the hull's boundary into its partner when the
     // side between them is a boundary edge: the boundary loses a node a fraction of a panel from
     // the next, and keeps its line (the keel, the waterline).
-    auto mergeable = [&](Index i, Index b) {
-      if (merged[i] || on_knuckle[i]) return false;
-      if (movable[i]) return true;
-      return i < slots.size() && slots[i].row != kInvalid && straight[i] &&
-             free_edges.count({std::min(i, b), std::max(i, b)}) > 0;
-    };
+    auto mergeable = [&](Index i, Index b) { return !merged[i] && freedom.may_merge(i, b, slots); };
     if (inner_free && any_free && partners_agree) {
       // score 2: the inner nodes towards the far side, onto the NURBS.
       std::map<Index, Vec3d> start;
@@ -281,15 +248,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
 
   // Removed faces go now; the merged nodes stay in the arrays, used by no face, until
   // drop_unused_vertices (the steps between still index the vertices as the rows placed them).
-  std::size_t kept = 0;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (mesh.faces[f][0] == kInvalid) continue;
-    mesh.faces[kept] = mesh.faces[f];
-    mesh.face_block[kept] = mesh.face_block[f];
-    ++kept;
-  }
-  mesh.faces.resize(kept);
-  mesh.face_block.resize(kept);
+  drop_removed_faces(mesh);
   return counts;
 }
 

@@ -60,7 +60,8 @@ struct StructuredOptions {
   double min_opposite_ratio = 0.35;
   double max_warp = 0.08;
   int relax_passes = 8;  // constrained smoothing passes (0: none)
-  // The paper's three border-panel repairs, chosen per run of distorted border panels by quality.
+  // The paper's three border-panel repairs, chosen per run of distorted border panels by quality,
+  // and the collapse of wedge quads into triangles (both only where they mend rule failures).
   bool repair_border_panels = true;
   // With the sizes from target_panels: mesh again, the sizes scaled by sqrt(count / target),
   // until the count is within kMatchTolerance of the target (at most kMatchPasses in all). The
@@ -91,6 +92,7 @@ struct StructuredReport {
   std::size_t edge_snaps = 0;      // border and knuckle nodes moved onto a patch edge curve
   // Distorted border panels, and how many each repair took (the rest were best left).
   std::size_t border_distorted = 0, border_removed = 0, border_extended = 0, border_split = 0;
+  std::size_t wedges_collapsed = 0;  // wedge quads made triangles by merging a short side's ends
   std::size_t size_passes = 1;       // meshing passes (more than one with match_panels)
   std::size_t first_pass_faces = 0;  // the first pass's panel count
   std::vector<BlockReport> blocks;
@@ -104,10 +106,10 @@ struct StructuredMesh {
 };
 
 // plan -> rows -> grow blocks (in parallel) -> zip -> caps -> relax -> repair border panels ->
-// onto the edge curves -> orient. surface: the merged hull (triangles, vertex_patch and vertex_uv
-// filled), adjacency and features of it; query: built on the same surface. Deterministic and
-// thread-count independent. Throws UsageError for impossible options and GeometryError when the
-// hull has no rows to grow.
+// onto the edge curves -> wedges into triangles -> orient. surface: the merged hull (triangles,
+// vertex_patch and vertex_uv filled), adjacency and features of it; query: built on the same
+// surface. Deterministic and thread-count independent. Throws UsageError for impossible options and
+// GeometryError when the hull has no rows to grow.
 StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
                                const EdgeAdjacency& adjacency, const HullQuery& query,
                                const FeatureSet& features, const StructuredOptions& options);

@@ -160,6 +160,16 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
                                         std::span<const std::array<Index, 2>> knuckle_edges,
                                         SurfaceMesh& mesh);
 
+// The paper's quad-to-triangle rule where nodes have converged: a quad breaking the side rule
+// whose shortest side is under min_opposite_ratio of its opposite side (a wedge) becomes a
+// triangle by merging one end of that side into the other (a free node, or a row's end node on a
+// straight stretch of the boundary), kept when it leaves fewer panels failing nearby or as many
+// and a milder worst. Nothing moves. Serial in face order. Removed faces are dropped; merged
+// nodes stay in the arrays, used by no face. Returns the number of wedges collapsed.
+std::size_t collapse_wedges(std::span<const NodeSlot> slots,
+                            std::span<const std::array<Index, 2>> knuckle_edges,
+                            double min_opposite_ratio, SurfaceMesh& mesh);
+
 // Boundary compliance on the exact curves: every node on the panel mesh's open border or on a
 // knuckle edge that lies on a fine boundary or knuckle segment running along an edge of a
 // patch's parameter domain moves onto that NURBS edge curve (a row node where the curve crosses
