@@ -54,46 +54,53 @@ std::vector<ClosePair> find_close_pairs(std::span<const Vec3d> points,
   std::vector<std::uint64_t> sorted_key(n);
   for (std::size_t i = 0; i < n; ++i) sorted_key[i] = key[order[i]];
 
-  // Partners of point i with a larger index, in ascending order, passed to emit. The three cells
-  // x - 1, x, x + 1 of a row are consecutive keys, so each of the 9 rows is one range.
-  const auto for_partners = [&](std::size_t i, auto&& emit) {
-    const Cell c = cell_of(points[i]);
-    std::vector<Index> found;
-    for (int dz = -1; dz <= 1; ++dz) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        const std::uint64_t k0 = cell_key({c[0] - 1, c[1] + dy, c[2] + dz});
-        const std::uint64_t k1 = cell_key({c[0] + 1, c[1] + dy, c[2] + dz});
-        auto it = std::lower_bound(sorted_key.begin(), sorted_key.end(), k0);
-        for (; it != sorted_key.end() && *it <= k1; ++it) {
-          const Index j = order[std::size_t(it - sorted_key.begin())];
-          if (j <= i) continue;
-          if (!group.empty() && group[i] == group[j]) continue;
-          if (norm(points[j] - points[i]) < tolerance) found.push_back(j);
+  // Partners of each point with a larger index, in the 9 rows of cells around it (x - 1 .. x + 1
+  // at y + dy, z + dz; consecutive keys). Points are walked in key order: a row's first key is
+  // the point's key plus a constant (keys are linear in the cell, every component in range), so
+  // each row's cursor only moves forward. Chunks of the key order run in parallel, each starting
+  // its cursors by binary search; each fills its own list, and the lists joined are sorted by
+  // (a, b), an order of the pairs alone, so that the result does not depend on the chunks.
+  constexpr std::size_t kChunk = 1024;
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<std::vector<ClosePair>> chunk_pairs(chunks);
+  parallel_for_each_item(chunks, [&](std::size_t c) {
+    std::vector<ClosePair>& out = chunk_pairs[c];
+    std::array<std::size_t, 9> cursor{};
+    const std::size_t first = c * kChunk, last = std::min(n, (c + 1) * kChunk);
+    for (std::size_t s = first; s < last; ++s) {
+      const Index i = order[s];
+      const Cell cell = cell_of(points[i]);
+      int row = 0;
+      for (int dz = -1; dz <= 1; ++dz) {
+        for (int dy = -1; dy <= 1; ++dy, ++row) {
+          const std::uint64_t k0 = cell_key({cell[0] - 1, cell[1] + dy, cell[2] + dz});
+          const std::uint64_t k1 = cell_key({cell[0] + 1, cell[1] + dy, cell[2] + dz});
+          std::size_t& t0 = cursor[row];
+          if (s == first) {
+            t0 = std::size_t(std::lower_bound(sorted_key.begin(), sorted_key.end(), k0) -
+                             sorted_key.begin());
+          } else {
+            while (t0 < n && sorted_key[t0] < k0) ++t0;
+          }
+          for (std::size_t t = t0; t < n && sorted_key[t] <= k1; ++t) {
+            const Index j = order[t];
+            if (j <= i) continue;
+            if (!group.empty() && group[i] == group[j]) continue;
+            const double d = norm(points[j] - points[i]);
+            if (d < tolerance) out.push_back({i, j, d});
+          }
         }
       }
     }
-    std::sort(found.begin(), found.end());
-    for (Index j : found) emit(j);
-  };
-
-  // Evaluate in parallel, commit in a fixed order: blocks of kBlock points (a size that does not
-  // depend on the thread count) each fill their own list, joined in block order. The cell search
-  // runs once per point. (Most points have no partner, so the small vector above rarely
-  // allocates.)
-  constexpr std::size_t kBlock = 256;
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<std::vector<ClosePair>> block_pairs(blocks);
-  parallel_for_each_item(blocks, [&](std::size_t b) {
-    std::vector<ClosePair>& out = block_pairs[b];
-    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-      for_partners(i, [&](Index j) { out.push_back({Index(i), j, norm(points[j] - points[i])}); });
-    }
   });
   std::size_t total = 0;
-  for (const auto& bp : block_pairs) total += bp.size();
+  for (const auto& cp : chunk_pairs) total += cp.size();
   std::vector<ClosePair> pairs;
   pairs.reserve(total);
-  for (const auto& bp : block_pairs) pairs.insert(pairs.end(), bp.begin(), bp.end());
+  for (const auto& cp : chunk_pairs) pairs.insert(pairs.end(), cp.begin(), cp.end());
+  std::sort(pairs.begin(), pairs.end(), [](const ClosePair& x, const ClosePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
   return pairs;
 }
 
@@ -105,13 +112,20 @@ std::vector<Index> weld_clusters(std::size_t point_count, std::span<const CloseP
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  // Groups present in each cluster, kept at the root (sorted, small: a few patches meet at a
-  // point).
-  std::vector<std::vector<std::uint32_t>> groups;
-  if (!group.empty()) {
-    groups.resize(point_count);
-    for (std::size_t i = 0; i < point_count; ++i) groups[i] = {group[i]};
-  }
+  // Members of each cluster, a circular list through next_member. A cluster never holds two
+  // points of one group, so its groups are its members' groups, each once; clusters are small (a
+  // few patches meet at a point), and the lists cost no allocation.
+  std::vector<Index> next_member(point_count);
+  std::iota(next_member.begin(), next_member.end(), Index{0});
+  const auto share_a_group = [&](Index ra, Index rb) {
+    for (Index x = ra;;) {
+      for (Index y = rb;;) {
+        if (group[x] == group[y]) return true;
+        if ((y = next_member[y]) == rb) break;
+      }
+      if ((x = next_member[x]) == ra) return false;
+    }
+  };
   std::vector<Index> by_distance(pairs.size());
   std::iota(by_distance.begin(), by_distance.end(), Index{0});
   std::sort(by_distance.begin(), by_distance.end(), [&](Index x, Index y) {
@@ -122,20 +136,10 @@ std::vector<Index> weld_clusters(std::size_t point_count, std::span<const CloseP
   for (Index k : by_distance) {
     Index ra = find(pairs[k].a), rb = find(pairs[k].b);
     if (ra == rb) continue;
-    if (!group.empty()) {
-      std::vector<std::uint32_t>&ga = groups[ra], &gb = groups[rb];
-      std::vector<std::uint32_t> both;
-      std::set_intersection(ga.begin(), ga.end(), gb.begin(), gb.end(), std::back_inserter(both));
-      if (!both.empty()) continue;
-      std::vector<std::uint32_t> merged;
-      std::set_union(ga.begin(), ga.end(), gb.begin(), gb.end(), std::back_inserter(merged));
-      if (rb < ra) std::swap(ra, rb);
-      groups[ra] = std::move(merged);
-      groups[rb].clear();
-    } else if (rb < ra) {
-      std::swap(ra, rb);
-    }
-    parent[rb] = ra;  // the smaller index is the root
+    if (!group.empty() && share_a_group(ra, rb)) continue;
+    if (rb < ra) std::swap(ra, rb);
+    parent[rb] = ra;                              // the smaller index is the root
+    std::swap(next_member[ra], next_member[rb]);  // one circle of both
   }
   std::vector<Index> rep(point_count);
   for (std::size_t i = 0; i < point_count; ++i) rep[i] = find(Index(i));

@@ -6,6 +6,7 @@
 
 #include "core/bbox.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "mesh/adjacency.h"
 
 namespace hm::merge {
@@ -50,7 +51,7 @@ Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj) {
 }
 
 SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges,
-                         double min_cell) {
+                         double min_cell, double median_edges) {
   if (edges.empty()) return;
   BBox3d box;
   std::vector<double> length(edges.size());
@@ -65,7 +66,7 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
                    sorted.end());
   const Vec3d e = box.extent();
   const double most = std::max({e.x, e.y, e.z});
-  size_ = std::max({sorted[sorted.size() / 2], min_cell, 1e-12 * (1 + most)});
+  size_ = std::max({median_edges * sorted[sorted.size() / 2], min_cell, 1e-12 * (1 + most)});
   // At most 2^20 cells along an axis keeps the keys in range for any input.
   size_ = std::max(size_, most / double(1 << 20));
   lo_ = box.lo;
@@ -86,7 +87,7 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
       }
     }
   }
-  std::sort(items.begin(), items.end());
+  parallel_sort(items.begin(), items.end(), std::less<>());
   keys_.resize(items.size());
   order_.resize(items.size());
   for (std::size_t i = 0; i < items.size(); ++i) {

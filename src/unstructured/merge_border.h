@@ -35,9 +35,11 @@ Border collect_border(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
 // meets (a fixed search radius sized for the longest edge would scan far too many).
 class SegmentGrid {
  public:
-  // Cells are at least `min_cell` wide (for zero-length "edges": points).
+  // Cells are `median_edges` median edge lengths wide, and at least `min_cell` (for zero-length
+  // "edges": points). A query whose ball is about one median edge wide meets 8 cells of 2 median
+  // edges, against 27 of one: a border is a curve, so the wider cells hold only twice the edges.
   SegmentGrid(std::span<const Vec3d> positions, std::span<const BorderEdge> edges,
-              double min_cell = 0);
+              double min_cell = 0, double median_edges = 1);
   // Calls f(edge index) for every edge that may lie within `radius` of p (a superset; an edge
   // may come more than once).
   template <class F>

@@ -43,6 +43,9 @@ constexpr double kFoldCos = 0.5;
 
 // A border vertex moves at most this share of its own patch's width across a gap.
 constexpr double kWidthShare = 0.5;
+// Grid cells of this many median border edges: a vertex's search ball (tol / kWidthShare, one
+// local border edge) then meets 8 cells, not 27.
+constexpr double kGridMedianEdges = 2;
 
 // A third patch lies between two close border vertices when each is within this share of their
 // distance from its border and heads into it within 60 degrees.
@@ -59,7 +62,7 @@ constexpr double kIntoCos = 0.5;
 // tol is the tolerance before the cut, and is cut in place.
 std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::span<double> tol,
                                  std::span<const Vec3d> inward) {
-  const SegmentGrid grid(m.positions, b.edges);
+  const SegmentGrid grid(m.positions, b.edges, 0, kGridMedianEdges);
   std::vector<Vec3d> edge_in(b.edges.size());
   parallel_for(0, b.edges.size(), [&](std::size_t e) { edge_in[e] = edge_inward(m, b.edges[e]); });
   std::vector<Split> out(b.vertices.size());
@@ -159,6 +162,8 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       }
     }
   }
+  // The close pairs came sorted by (a, b); the end pairs are sorted on their own and merged in.
+  const std::size_t close_count = pairs.size();
   for (std::size_t i = 0; i < nb; ++i) {
     const Split& s = near[i];
     if (s.edge == kInvalid) continue;
@@ -171,9 +176,12 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       pairs.push_back({Index(std::min<std::size_t>(i, j)), Index(std::max<std::size_t>(i, j)), d});
     }
   }
-  std::sort(pairs.begin(), pairs.end(), [](const ClosePair& x, const ClosePair& y) {
+  const auto by_ab = [](const ClosePair& x, const ClosePair& y) {
     return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
+  };
+  std::sort(pairs.begin() + std::ptrdiff_t(close_count), pairs.end(), by_ab);
+  std::inplace_merge(pairs.begin(), pairs.begin() + std::ptrdiff_t(close_count), pairs.end(),
+                     by_ab);
   pairs.erase(
       std::unique(pairs.begin(), pairs.end(),
                   [](const ClosePair& x, const ClosePair& y) { return x.a == y.a && x.b == y.b; }),
@@ -213,7 +221,7 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       border_links.push_back((std::uint64_t{std::min(wu, wv)} << 32) | std::max(wu, wv));
     }
   }
-  std::sort(border_links.begin(), border_links.end());
+  parallel_sort(border_links.begin(), border_links.end(), std::less<>());
   const auto faces_at = [&](Index u, Index v) {
     const std::uint64_t key = (std::uint64_t{std::min(u, v)} << 32) | std::max(u, v);
     const auto range = std::equal_range(border_links.begin(), border_links.end(), key);

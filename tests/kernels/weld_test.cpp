@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
 #include <random>
+#include <set>
 #include <vector>
 
 #include "core/error.h"
@@ -75,6 +78,61 @@ TEST(WeldClusters, NearestFirstAndNeverTwoOfOneGroup) {
   // Without groups everything joins, represented by the smallest index.
   const std::vector<Index> all = weld_clusters(3, pairs, {});
   EXPECT_EQ(all, (std::vector<Index>{0, 0, 0}));
+}
+
+// The clustering against the rule written out plainly: pairs nearest first (ties by (a, b)), each
+// joining two clusters unless they share a group, the groups kept as a set per cluster. Random
+// pairs over a few groups make clusters of several points and many refusals (the kernel keeps
+// its clusters' members in circular lists since 2026-12-04, where it kept sorted group vectors).
+TEST(WeldClusters, SameAsTheRuleWithGroupSets) {
+  std::mt19937_64 rng(7);
+  const std::size_t n = 3000;
+  std::vector<std::uint32_t> group(n);
+  for (auto& g : group) g = static_cast<std::uint32_t>(rng() % 6);
+  std::vector<ClosePair> pairs;
+  for (int k = 0; k < 6000; ++k) {
+    const Index a = static_cast<Index>(rng() % n), b = static_cast<Index>(rng() % n);
+    if (a == b) continue;
+    pairs.push_back({std::min(a, b), std::max(a, b), double(rng() % 1000) * 1e-3});
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const ClosePair& x, const ClosePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  pairs.erase(
+      std::unique(pairs.begin(), pairs.end(),
+                  [](const ClosePair& x, const ClosePair& y) { return x.a == y.a && x.b == y.b; }),
+      pairs.end());
+
+  std::vector<Index> parent(n);
+  std::iota(parent.begin(), parent.end(), Index{0});
+  std::vector<std::set<std::uint32_t>> groups(n);
+  for (std::size_t i = 0; i < n; ++i) groups[i] = {group[i]};
+  const auto find = [&](Index x) {
+    while (parent[x] != x) x = parent[x];
+    return x;
+  };
+  std::vector<ClosePair> order = pairs;
+  std::stable_sort(order.begin(), order.end(),
+                   [](const ClosePair& x, const ClosePair& y) { return x.distance < y.distance; });
+  std::size_t refused = 0;
+  for (const ClosePair& p : order) {
+    Index ra = find(p.a), rb = find(p.b);
+    if (ra == rb) continue;
+    bool shared = false;
+    for (std::uint32_t g : groups[rb]) shared = shared || groups[ra].count(g) > 0;
+    if (shared) {
+      ++refused;
+      continue;
+    }
+    if (rb < ra) std::swap(ra, rb);
+    parent[rb] = ra;
+    groups[ra].insert(groups[rb].begin(), groups[rb].end());
+  }
+  std::vector<Index> expected(n);
+  for (std::size_t i = 0; i < n; ++i) expected[i] = find(Index(i));
+  ASSERT_GT(refused, 100u);
+
+  EXPECT_EQ(weld_clusters(n, pairs, group), expected);
 }
 
 }  // namespace
