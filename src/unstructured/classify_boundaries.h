@@ -11,10 +11,11 @@
 //                   (|n_x| < 0.7: the hull ends at the edge, it is not the top of a modelled
 //                   transom), the run within 0.25 L of either x end of the surface and spanning
 //                   at least 0.01 L;
-//   4. kDeckEdge    its face lies below it (face centroid z < edge midpoint z) and nothing of the
-//                   surface stands higher nearby (the edge's top end within 5% of the z extent of
-//                   the highest vertex in the x slab around it): the sheer line, whatever its
-//                   rise, and the top of a modelled transom;
+//   4. kDeckEdge    its face lies below it (the face centroid below the edge's line, square to
+//                   the edge) and nothing of the surface stands more than 5% of the z extent
+//                   above the edge's top end over the edge's own x range (faces clipped to it,
+//                   the range shrunk by 1e-6 L at each end): the sheer line, whatever its rise,
+//                   up to where a raised side begins, and the top of a modelled transom;
 //   5. kHole        everything else (a gap the merger left open, a lower rim, ...).
 #pragma once
 
