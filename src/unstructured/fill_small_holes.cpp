@@ -3,7 +3,10 @@
 // along two or more patches are such holes (a true boundary of a hull is never that short); they
 // are closed with one triangle or two (split along the shorter diagonal that is not an edge
 // already). Longer loops (up to 16 vertices) are closed only when their perimeter is shorter than
-// the longest edge of the faces along them: pinholes.
+// the longest edge of the faces along them (pinholes), or when they are slits: no wider, on
+// average, than the gap tolerance at their edges, two borders that the snap left apart where it
+// closes gaps as wide (a fold test or a third patch's tip in the way). A slit is closed by ear
+// clipping, the shortest diagonal first that is not an edge of the mesh already.
 #include <algorithm>
 #include <cstdint>
 #include <set>
@@ -16,6 +19,53 @@ namespace hm::merge {
 namespace {
 
 constexpr std::size_t kMaxHoleVertices = 16;
+
+// Faces closing loop r (its vertices in its faces' winding) by ear clipping in the plane square to
+// `up` (the faces' side the new faces must face too): of the ears that are convex there, hold no
+// other loop vertex and whose diagonal is not an edge of the mesh already (is_edge), the one with
+// the shortest diagonal first (ties by position). Empty when no such ear is left. The new faces
+// run against the loop.
+template <class IsEdge>
+std::vector<Face> clip_ears(const SurfaceMesh& m, std::vector<Index> r, const Vec3d& up,
+                            IsEdge&& is_edge) {
+  // A frame of the plane: e1, e2 with e1 x e2 along up.
+  const Vec3d n = normalized(up);
+  const Vec3d any = std::abs(n.x) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
+  const Vec3d e1 = normalized(cross(any, n)), e2 = cross(n, e1);
+  const auto at = [&](Index v) { return Vec2d{dot(m.positions[v], e1), dot(m.positions[v], e2)}; };
+  const auto turn = [](const Vec2d& a, const Vec2d& b, const Vec2d& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  };
+  std::vector<Face> out;
+  while (r.size() >= 3) {
+    const std::size_t k = r.size();
+    std::size_t best = k;
+    double best_len = 0;
+    for (std::size_t i = 0; i < k; ++i) {
+      const Index a = r[(i + k - 1) % k], b = r[i], c = r[(i + 1) % k];
+      // The new face (a, c, b) must face `up`: in the loop's own winding (a, b, c) turns the
+      // other way.
+      const Vec2d pa = at(a), pb = at(b), pc = at(c);
+      if (!(turn(pa, pb, pc) < 0)) continue;
+      if (k > 3 && is_edge(a, c)) continue;
+      bool holds = false;
+      for (std::size_t j = 0; j < k && !holds; ++j) {
+        const Index v = r[j];
+        if (v == a || v == b || v == c) continue;
+        const Vec2d p = at(v);
+        holds = turn(pa, pb, p) <= 0 && turn(pb, pc, p) <= 0 && turn(pc, pa, p) <= 0;
+      }
+      if (holds) continue;
+      const double len = norm(m.positions[c] - m.positions[a]);
+      if (best == k || len < best_len) best = i, best_len = len;
+    }
+    if (best == k) return {};
+    out.push_back({r[(best + k - 1) % k], r[(best + 1) % k], r[best], kInvalid});
+    if (k == 3) break;
+    r.erase(r.begin() + std::ptrdiff_t(best));
+  }
+  return out;
+}
 
 // A boundary loop that passes a vertex twice (a hole touching the hull's outline at one vertex)
 // is several cycles; cut it there. Each cycle is (vertices, edges), edges[i] leaving vertices[i].
@@ -41,7 +91,7 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
 
 }  // namespace
 
-std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj) {
+std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options) {
   SurfaceMesh& m = w.mesh;
   std::size_t filled = 0;
   // The mesh's edges as sorted keys, collected at the first hole of four vertices.
@@ -61,29 +111,46 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj) {
       if (r.size() < 3 || r.size() > kMaxHoleVertices) continue;
       std::set<PatchId> patches;
       Index first_face = kInvalid;
-      double perimeter = 0, local = 0;
+      double perimeter = 0, local = 0, tolerance = 0;
+      Vec3d centroid{0, 0, 0};
+      for (Index v : r) centroid += m.positions[v] / double(r.size());
+      double area2 = 0;   // twice the area of the fan from the centroid (unsigned: a twist adds)
+      Vec3d up{0, 0, 0};  // the side the faces along the loop face
       for (std::size_t i = 0; i < edges.size(); ++i) {
         const Index f = adj.edges[edges[i]].first_slot / 4;
         patches.insert(m.face_patch[f]);
+        up += face_normal(m.positions, m.faces[f]);
         first_face = std::min(first_face, f);
-        perimeter += norm(m.positions[r[(i + 1) % r.size()]] - m.positions[r[i]]);
+        const Vec3d& p = m.positions[r[i]];
+        const Vec3d& q = m.positions[r[(i + 1) % r.size()]];
+        const double edge = norm(q - p);
+        perimeter += edge;
+        tolerance += vertex_tolerance(options, edge) * edge;
+        area2 += norm(cross(p - centroid, q - centroid));
         const Face& t = m.faces[f];
         for (int c = 0; c < 3; ++c) {
           local = std::max(local, norm(m.positions[t[(c + 1) % 3]] - m.positions[t[c]]));
         }
       }
       if (patches.size() < 2) continue;
-      // Beyond four vertices only holes far smaller than the faces around them: pinholes left
-      // where several short border edges met.
-      if (r.size() > 4 && !(perimeter < local)) continue;
+      // Beyond four vertices only holes far smaller than the faces around them (pinholes left
+      // where several short border edges met) and slits: mean width (twice the area over the
+      // perimeter) within the mean gap tolerance along them (by edge length), both times the
+      // perimeter.
+      const bool pinhole = perimeter < local;
+      const bool slit = area2 <= tolerance;
+      if (r.size() > 4 && !pinhole && !slit) continue;
       // The loop follows its faces' winding, so the new faces run against it.
       std::vector<Face> add;
       if (r.size() == 3) {
         add.push_back({r[0], r[2], r[1], kInvalid});
-      } else if (r.size() > 4) {
+      } else if (r.size() > 4 && pinhole) {
         // A pinhole: a fan from its first vertex (its shape is below the mesh's resolution).
         for (std::size_t i = 1; i + 1 < r.size(); ++i)
           add.push_back({r[0], r[i + 1], r[i], kInvalid});
+      } else if (r.size() > 4) {
+        add = clip_ears(m, r, up, is_edge);
+        if (add.empty()) continue;
       } else {
         // The shorter diagonal, unless it is an edge of the mesh already (the hole then folds
         // round it, and a third face would meet there).

@@ -121,7 +121,7 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   // After orienting: the loops must follow one winding to be closed against it.
   // Holes that touch at a vertex chain as one loop until one of them is closed: repeat a little.
   for (int pass = 0; pass < 3; ++pass) {
-    const std::size_t filled = merge::fill_small_holes(w, adj);
+    const std::size_t filled = merge::fill_small_holes(w, adj, options);
     r.holes_filled += filled;
     if (filled == 0) break;
     adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());

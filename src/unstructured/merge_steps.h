@@ -54,11 +54,11 @@ SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& option
                        std::span<const double> tol_scale = {});
 
 // Closes boundary loops of 3 or 4 vertices that run along two or more patches (the holes
-// pairwise zipping leaves where several patch corners meet), and pinholes of up to 16 vertices
-// smaller than the faces around them. adj is the mesh's current adjacency. Returns the holes
-// filled (when none, adj is still current). The new faces take the provenance of the loop's
-// lowest-numbered face.
-std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj);
+// pairwise zipping leaves where several patch corners meet), and, up to 16 vertices, pinholes
+// smaller than the faces around them and slits no wider on average than the gap tolerance. adj is
+// the mesh's current adjacency. Returns the holes filled (when none, adj is still current). The new
+// faces take the provenance of the loop's lowest-numbered face.
+std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options);
 
 // Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
 // number of faces dropped.

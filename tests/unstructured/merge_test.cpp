@@ -159,6 +159,74 @@ TEST(MergeSteps, BorderRunningOnPastACornerIsNoGapButAlignedBordersApartAre) {
   EXPECT_EQ(gaps[0].vertices, 2u);  // the middle row, both sides (the corners are corners)
 }
 
+// A slit: from x = 0 to 4, patch 0's top border at y = 1 (vertices at x = 0 .. 4) and patch 1's
+// bottom border 2 cm above it (vertices at x = 0.5 .. 3.5, half a step along); beyond, the two
+// patches share their border. The closed loop between them has 9 vertices and a perimeter of
+// 8 m, far beyond a pinhole, but it is 2 cm wide where the gap tolerance is half a 1 m edge: a
+// gap the snap left (the generated 1,000-patch chine hull at 400,000 triangles had one at its
+// transom, 0.30 m round). It closes, unfolded; the outline stays open.
+TEST(MergeSteps, SlitBetweenTwoBordersIsClosed) {
+  merge::Work w;
+  SurfaceMesh& m = w.mesh;
+  auto vertex = [&](double x, double y, PatchId p) {
+    m.positions.push_back({x, y, 0});
+    m.vertex_patch.push_back(p);
+    m.vertex_uv.push_back({});
+    w.vert_old.push_back(Index(w.vert_old.size()));
+    return Index(m.positions.size() - 1);
+  };
+  auto face = [&](Index a, Index b, Index c, PatchId p) {
+    m.faces.push_back({a, b, c, kInvalid});
+    m.face_patch.push_back(p);
+    w.face_old.push_back(Index(w.face_old.size()));
+  };
+  // Rows from x = -1 to 5: y = 0 and y = 1 (patch 0), y = 2 (patch 1); patch 1's lower border c
+  // runs along b but for the slit, 2 cm above it from x = 0 to 4 (so the slit is inside).
+  std::vector<Index> a, b, c, d;
+  for (int i = -1; i <= 5; ++i) a.push_back(vertex(i, 0, 0));
+  for (int i = -1; i <= 5; ++i) b.push_back(vertex(i, 1, 0));
+  c = {b[0], b[1]};
+  for (int i = 0; i < 4; ++i) c.push_back(vertex(i + 0.5, 1.02, 1));
+  c.insert(c.end(), {b[5], b[6]});
+  for (int i = -1; i <= 5; ++i) d.push_back(vertex(i, 2, 1));
+  for (std::size_t i = 0; i + 1 < a.size(); ++i) {
+    face(a[i], a[i + 1], b[i + 1], 0);
+    face(a[i], b[i + 1], b[i], 0);
+  }
+  // Zip c to d by x, counter-clockwise seen from +z like patch 0.
+  for (std::size_t i = 0, j = 0; i + 1 < c.size() || j + 1 < d.size();) {
+    const bool step_c = j + 1 == d.size() ||
+                        (i + 1 < c.size() && m.positions[c[i + 1]].x <= m.positions[d[j + 1]].x);
+    if (step_c) {
+      face(c[i], c[i + 1], d[j], 1);
+      ++i;
+    } else {
+      face(c[i], d[j + 1], d[j], 1);
+      ++j;
+    }
+  }
+  const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
+  ASSERT_TRUE(before.nonmanifold_edges.empty());
+  ASSERT_TRUE(before.inconsistent_edges.empty());
+  ASSERT_EQ(before.boundary_loops.size(), 2u);
+  const double area = total_area(m);
+
+  // With a gap tolerance of 5 mm the slit is wider than a gap, and stays.
+  merge::Work kept = w;
+  MergeOptions narrow;
+  narrow.gap_tolerance = 0.005;
+  EXPECT_EQ(merge::fill_small_holes(kept, before, narrow), 0u);
+  EXPECT_EQ(kept.mesh.faces.size(), m.faces.size());
+
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}), 1u);
+  const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(after.nonmanifold_edges.empty());
+  EXPECT_TRUE(after.inconsistent_edges.empty());
+  EXPECT_EQ(after.boundary_loops.size(), 1u);
+  EXPECT_NEAR(total_area(m), area + 2 * 0.5 * 0.02 / 2 + 3 * 0.02, 1e-9);       // the slit's own
+  for (const Face& f : m.faces) EXPECT_GT(face_normal(m.positions, f).z, 0.0);  // none folded
+}
+
 // A hole of four vertices whose shorter diagonal is already an edge of the mesh (a fin stands on
 // it here; on the generated 1,000-patch round-bilge hull at 40,000 triangles it was a fold of
 // the snap at the transom). Closing the hole along that diagonal gave the edge a third face;
@@ -190,7 +258,7 @@ TEST(MergeSteps, SmallHoleIsNotClosedAlongAnExistingEdge) {
 
   const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
   ASSERT_TRUE(before.nonmanifold_edges.empty());
-  EXPECT_EQ(merge::fill_small_holes(w, before), 1u);
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}), 1u);
   const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
   EXPECT_TRUE(after.nonmanifold_edges.empty());
   EXPECT_TRUE(after.inconsistent_edges.empty());
