@@ -63,8 +63,6 @@ EditableFaces::Score EditableFaces::score(const std::set<Index>& core,
 }
 
 EditableFaces::Score EditableFaces::score(const std::set<Index>& core) const {
-  Score sc;
-  sc.worst = worst(core);
   std::set<Index> near = core;
   for (Index f : core) {
     if (removed(f)) continue;
@@ -75,13 +73,7 @@ EditableFaces::Score EditableFaces::score(const std::set<Index>& core) const {
       if (g != kInvalid) near.insert(g);
     }
   }
-  for (Index f : near) {
-    if (removed(f)) continue;
-    double side = 0, area = 0;
-    rules(f, side, area);
-    sc.fails += side > kSideLimit || area > kAreaLimit;
-  }
-  return sc;
+  return score(core, near);
 }
 
 void EditableFaces::rules(Index f, double& side, double& area) const {

@@ -209,6 +209,21 @@ std::map<BoundaryKind, std::size_t> edges_by_kind(const FeatureSet& f) {
   return n;
 }
 
+// m with only the faces whose centroid `keep` accepts (and their patches).
+template <class Keep>
+SurfaceMesh kept_faces(SurfaceMesh m, Keep&& keep) {
+  std::vector<Face> faces;
+  std::vector<PatchId> face_patch;
+  for (std::size_t t = 0; t < m.faces.size(); ++t) {
+    if (!keep(face_centroid(m.positions, m.faces[t]))) continue;
+    faces.push_back(m.faces[t]);
+    face_patch.push_back(m.face_patch[t]);
+  }
+  m.faces = std::move(faces);
+  m.face_patch = std::move(face_patch);
+  return m;
+}
+
 TEST(Features, HalfHullBoundariesAreCentrePlaneAndDeckEdge) {
   for (HullKind kind : {HullKind::kWigley, HullKind::kRoundBilge, HullKind::kChine}) {
     SCOPED_TRACE(to_string(kind));
@@ -242,17 +257,8 @@ TEST(Features, HalfHullBoundariesAreCentrePlaneAndDeckEdge) {
 // are dropped, and the hull ends in an open transom at x = 0.
 TEST(Features, OpenTransomIsATransomEdge) {
   const Hull& h = hull(HullKind::kChine);
-  SurfaceMesh m = h.tess.mesh;
-  std::vector<Face> faces;
-  std::vector<PatchId> face_patch;
-  for (std::size_t t = 0; t < m.faces.size(); ++t) {
-    if (face_centroid(m.positions, m.faces[t]).x < 1e-9) continue;
-    faces.push_back(m.faces[t]);
-    face_patch.push_back(m.face_patch[t]);
-  }
-  ASSERT_LT(faces.size(), m.faces.size());
-  m.faces = faces;
-  m.face_patch = face_patch;
+  const SurfaceMesh m = kept_faces(h.tess.mesh, [](const Vec3d& c) { return c.x >= 1e-9; });
+  ASSERT_LT(m.faces.size(), h.tess.mesh.faces.size());
   const EdgeAdjacency adjacency = build_edge_adjacency(m.faces, m.vertex_count());
   const FeatureSet f = find_features(m, adjacency, h.generated.patches, {});
   auto n = edges_by_kind(f);
@@ -279,16 +285,7 @@ TEST(Features, LowSheerBesideAStepUpIsDeckEdgeUpToTheStep) {
     if (std::abs(p.x - 20.0) < bx) bx = std::abs(p.x - 20.0), xs = p.x;
     if (std::abs(p.z - 4.0) < bz) bz = std::abs(p.z - 4.0), zc = p.z;
   }
-  std::vector<Face> faces;
-  std::vector<PatchId> face_patch;
-  for (std::size_t t = 0; t < m.faces.size(); ++t) {
-    const Vec3d c = face_centroid(m.positions, m.faces[t]);
-    if (c.x < xs && c.z > zc) continue;
-    faces.push_back(m.faces[t]);
-    face_patch.push_back(m.face_patch[t]);
-  }
-  m.faces = faces;
-  m.face_patch = face_patch;
+  m = kept_faces(m, [&](const Vec3d& c) { return !(c.x < xs && c.z > zc); });
   const EdgeAdjacency adjacency = build_edge_adjacency(m.faces, m.vertex_count());
   const FeatureSet f = find_features(m, adjacency, h.generated.patches, {});
   auto n = edges_by_kind(f);
@@ -346,15 +343,7 @@ TEST(Features, WaterlineCutBoundaryIsWaterline) {
   for (const Vec3d& p : m.positions) {
     if (std::abs(p.z - 3.0) < best) best = std::abs(p.z - 3.0), cut = p.z;
   }
-  std::vector<Face> faces;
-  std::vector<PatchId> face_patch;
-  for (std::size_t t = 0; t < m.faces.size(); ++t) {
-    if (face_centroid(m.positions, m.faces[t]).z > cut) continue;
-    faces.push_back(m.faces[t]);
-    face_patch.push_back(m.face_patch[t]);
-  }
-  m.faces = faces;
-  m.face_patch = face_patch;
+  m = kept_faces(m, [&](const Vec3d& c) { return c.z <= cut; });
   const EdgeAdjacency adjacency = build_edge_adjacency(m.faces, m.vertex_count());
   FeatureOptions o;
   o.waterline_z = cut;
