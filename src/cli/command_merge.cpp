@@ -118,7 +118,7 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
     if (r.snap_retries > 0) {
       std::printf(
           "  snap run again %zu time%s with a smaller tolerance near edges with three "
-          "faces\n",
+          "faces or folded holes\n",
           r.snap_retries, r.snap_retries == 1 ? "" : "s");
     }
     std::printf("  gaps left open: %zu", r.open_gaps.size());

@@ -8,6 +8,7 @@
 // closes gaps as wide (a fold test or a third patch's tip in the way). A slit is closed by ear
 // clipping, the shortest diagonal first that is not an edge of the mesh already.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <set>
 
@@ -91,8 +92,15 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
 
 }  // namespace
 
-std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options) {
+std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
+                             std::vector<std::array<Index, 2>>* left_open) {
   SurfaceMesh& m = w.mesh;
+  if (left_open) left_open->clear();
+  // A hole this step would close but cannot: its edges go to left_open.
+  const auto leave_open = [&](const std::vector<Index>& r) {
+    if (!left_open) return;
+    for (std::size_t i = 0; i < r.size(); ++i) left_open->push_back({r[i], r[(i + 1) % r.size()]});
+  };
   std::size_t filled = 0;
   // The mesh's edges as sorted keys, collected at the first hole of four vertices.
   std::vector<std::uint64_t> edge_keys;
@@ -150,12 +158,18 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
           add.push_back({r[0], r[i + 1], r[i], kInvalid});
       } else if (r.size() > 4) {
         add = clip_ears(m, r, up, is_edge);
-        if (add.empty()) continue;
+        if (add.empty()) {
+          leave_open(r);
+          continue;
+        }
       } else {
         // The shorter diagonal, unless it is an edge of the mesh already (the hole then folds
         // round it, and a third face would meet there).
         const bool d02 = !is_edge(r[0], r[2]), d13 = !is_edge(r[1], r[3]);
-        if (!d02 && !d13) continue;
+        if (!d02 && !d13) {
+          leave_open(r);
+          continue;
+        }
         if (d02 && (!d13 || norm(m.positions[r[0]] - m.positions[r[2]]) <=
                                 norm(m.positions[r[1]] - m.positions[r[3]]))) {
           add.push_back({r[0], r[2], r[1], kInvalid});

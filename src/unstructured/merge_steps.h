@@ -1,6 +1,7 @@
 // The steps of merge_patches, one file each. Internal to src/unstructured.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -57,8 +58,11 @@ SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& option
 // pairwise zipping leaves where several patch corners meet), and, up to 16 vertices, pinholes
 // smaller than the faces around them and slits no wider on average than the gap tolerance. adj is
 // the mesh's current adjacency. Returns the holes filled (when none, adj is still current). The new
-// faces take the provenance of the loop's lowest-numbered face.
-std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options);
+// faces take the provenance of the loop's lowest-numbered face. left_open, when given, gets the
+// edges (vertex pairs) of the holes it would close but cannot: a hole of four vertices whose both
+// diagonals are edges already, a slit with no ear free to clip. Both are folds the snap made.
+std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
+                             std::vector<std::array<Index, 2>>* left_open = nullptr);
 
 // Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
 // number of faces dropped.

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <initializer_list>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -231,14 +234,17 @@ TEST(MergeSteps, SlitBetweenTwoBordersIsClosed) {
 // it here; on the generated 1,000-patch round-bilge hull at 40,000 triangles it was a fold of
 // the snap at the transom). Closing the hole along that diagonal gave the edge a third face;
 // the other diagonal closes it cleanly.
-TEST(MergeSteps, SmallHoleIsNotClosedAlongAnExistingEdge) {
+// A 3 x 3 grid of unit squares in z = 0 over patches 0 and 1 with its middle square open, corner
+// (2, 2) pulled in to (1.8, 1.8) so that the diagonal (1, 1)-(2, 2) is the shorter one, and a fin
+// (patch 2) standing on each diagonal named in `fins`: 0 for (1, 1)-(2, 2), 1 for (2, 1)-(1, 2).
+merge::Work grid_with_hole(std::initializer_list<int> fins) {
   merge::Work w;
   SurfaceMesh& m = w.mesh;
   auto at = [](int i, int j) { return Index(4 * j + i); };
   for (int j = 0; j < 4; ++j) {
     for (int i = 0; i < 4; ++i) m.positions.push_back({double(i), double(j), 0.0});
   }
-  m.positions[at(2, 2)] = {1.8, 1.8, 0.0};  // the diagonal (1, 1)-(2, 2) is the shorter one
+  m.positions[at(2, 2)] = {1.8, 1.8, 0.0};
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
       if (i == 1 && j == 1) continue;  // the hole
@@ -248,22 +254,63 @@ TEST(MergeSteps, SmallHoleIsNotClosedAlongAnExistingEdge) {
       m.face_patch.insert(m.face_patch.end(), {p, p});
     }
   }
-  m.positions.push_back({1.4, 1.4, 1.0});
-  m.faces.push_back({at(1, 1), at(2, 2), Index(16), kInvalid});  // the fin
-  m.face_patch.push_back(2);
+  for (int fin : fins) {
+    const Index top = Index(m.positions.size());
+    m.positions.push_back({1.4, 1.4, fin == 0 ? 1.0 : -1.0});
+    m.faces.push_back(fin == 0 ? Face{at(1, 1), at(2, 2), top, kInvalid}
+                               : Face{at(2, 1), at(1, 2), top, kInvalid});
+    m.face_patch.push_back(2);
+  }
   m.vertex_patch.assign(m.positions.size(), 0);
   m.vertex_uv.assign(m.positions.size(), {});
   for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
   for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+  return w;
+}
 
+// A hole of four vertices whose shorter diagonal is already an edge of the mesh (a fin stands on
+// it here; on the generated 1,000-patch round-bilge hull at 40,000 triangles it was a fold of
+// the snap at the transom). Closing the hole along that diagonal gave the edge a third face;
+// the other diagonal closes it cleanly.
+TEST(MergeSteps, SmallHoleIsNotClosedAlongAnExistingEdge) {
+  merge::Work w = grid_with_hole({0});
+  const SurfaceMesh& m = w.mesh;
   const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
   ASSERT_TRUE(before.nonmanifold_edges.empty());
-  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}), 1u);
+  std::vector<std::array<Index, 2>> left_open;
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 1u);
+  EXPECT_TRUE(left_open.empty());
   const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
   EXPECT_TRUE(after.nonmanifold_edges.empty());
   EXPECT_TRUE(after.inconsistent_edges.empty());
   EXPECT_EQ(after.boundary_loops.size(), before.boundary_loops.size() - 1);
   EXPECT_EQ(m.face_count(), 19u);  // 16 round the hole, the fin, and the two new faces
+}
+
+// With both diagonals edges already, the hole stays open, and its four edges are named as left
+// open: the merge snaps again with a smaller tolerance there.
+TEST(MergeSteps, HoleWithBothDiagonalsTakenIsNamedAsLeftOpen) {
+  merge::Work w = grid_with_hole({0, 1});
+  const std::size_t faces = w.mesh.face_count();
+  const EdgeAdjacency before = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  std::vector<std::array<Index, 2>> left_open;
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 0u);
+  EXPECT_EQ(w.mesh.face_count(), faces);
+  ASSERT_EQ(left_open.size(), 4u);
+  std::set<Index> corners;
+  for (const auto& [a, b] : left_open) corners.insert({a, b});
+  EXPECT_EQ(corners, (std::set<Index>{5, 6, 9, 10}));
+}
+
+// The generated 1,000-patch round-bilge hull at 40,000 triangles: two transom patches (995 and
+// 997) snapped so that a vertex of one lay inside a face of the other, which left a hole of four
+// vertices whose both diagonals were edges (0.61 m round, reported as a hole). The merge snaps
+// again with a smaller tolerance near such a hole, and the hull closes.
+TEST(Merge, FoldedHoleIsSnappedAgainAndCloses) {
+  const std::vector<Patch> patches = generated(HullKind::kRoundBilge, 1000).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 40000));
+  expect_clean_half_hull(m, "round-bilge, 1000 patches");
+  EXPECT_GE(m.merged.report.snap_retries, 1u);
 }
 
 // A flat bilinear patch in the plane x = 0 with corners (y, z): a0, a1 along the lower side and
