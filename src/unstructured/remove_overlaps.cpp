@@ -320,6 +320,150 @@ void split_edges_off(Work& w, std::vector<PatchId>& cover, const OnLower& on_low
   }
 }
 
+// Corners of the patches below (their border turns by more than this there) are inserted into
+// the edges the cut crosses; see insert_lower_corners.
+constexpr double kCornerCos = 0.866;  // 30 degrees
+// A corner lies on a face's edge when its barycentric coordinate across that edge is within this
+// (either side) and the other two are not.
+constexpr double kOnEdge = 0.05;
+
+// The cut runs straight between the points where a face's edges leave the patches below. Where a
+// corner of a patch below lies on such an edge, between its covered and its uncovered end, the
+// straight cut passes it by and keeps the piece of that patch beyond the corner doubled. This is
+// gaps and overlaps together: the upper patch's border runs a little outside the lower one's, its
+// covered border vertex then counts as on the lower border (its border edge leaves at once), and
+// the faces round it keep a chord across the lower patch's corner. Each such corner (of a patch
+// numbered below the edge's, within the overlap distance of the face's plane, and further than
+// kOnBorder of the edge from either end, where the cut's own rule turns already) is inserted into
+// the edge as a new vertex covered by its patch, splitting the faces on that edge, so that the
+// cut turns there. An edge takes the lowest-numbered such corner. Returns the corners inserted.
+// Inserting corners inside faces too was tried: it left as many merges broken as it mended.
+std::size_t insert_lower_corners(Work& w, const Border& b, std::vector<PatchId>& cover,
+                                 double distance) {
+  SurfaceMesh& m = w.mesh;
+  // Collect: border vertices where their patch's border turns (one edge in, one out).
+  const std::size_t nv = m.vertex_count();
+  std::vector<Vec3d> in_dir(nv), out_dir(nv);
+  std::vector<std::uint8_t> ins(nv, 0), outs(nv, 0);
+  for (const BorderEdge& e : b.edges) {
+    const Vec3d d = m.positions[e.v1] - m.positions[e.v0];
+    in_dir[e.v1] = d;
+    out_dir[e.v0] = d;
+    ins[e.v1] += ins[e.v1] < 2;
+    outs[e.v0] += outs[e.v0] < 2;
+  }
+  std::vector<BorderEdge> corners;  // as points: v0 == v1
+  for (Index v : b.vertices) {
+    if (ins[v] != 1 || outs[v] != 1) continue;
+    const double li = norm(in_dir[v]), lo = norm(out_dir[v]);
+    if (!(li > 0 && lo > 0) || dot(in_dir[v], out_dir[v]) >= kCornerCos * li * lo) continue;
+    corners.push_back({v, v, kInvalid, m.vertex_patch[v]});
+  }
+  if (corners.empty()) return 0;
+  // Score: per crossed face (a covered corner and an uncovered one), the lowest-numbered corner of
+  // a patch below on one of its edges, as (edge key, corner).
+  const std::size_t nf = m.face_count();
+  std::vector<std::pair<std::uint64_t, Index>> found(nf, {0, kInvalid});
+  double longest = 0;
+  for (const Face& t : m.faces) {
+    for (int k = 0; k < 3; ++k) {
+      longest = std::max(longest, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
+    }
+  }
+  const SegmentGrid grid(m.positions, corners, longest + distance);
+  parallel_for(0, nf, [&](std::size_t f) {
+    const Face& t = m.faces[f];
+    int covered = 0;
+    for (int c = 0; c < 3; ++c) covered += cover[t[c]] != kInvalid;
+    if (covered == 0 || covered == 3) return;
+    const Vec3d &p0 = m.positions[t[0]], &p1 = m.positions[t[1]], &p2 = m.positions[t[2]];
+    const Vec3d n = cross(p1 - p0, p2 - p0);
+    const double n2 = squared_norm(n);
+    if (!(n2 > 0)) return;
+    const Vec3d centre = (p0 + p1 + p2) / 3.0;
+    double reach = distance;
+    for (int c = 0; c < 3; ++c) reach = std::max(reach, norm(m.positions[t[c]] - centre));
+    std::pair<std::uint64_t, Index> best{0, kInvalid};
+    grid.for_each_near(centre, reach + distance, [&](Index i) {
+      const Index c = corners[i].v0;
+      if (corners[i].patch >= m.face_patch[f] || (best.second != kInvalid && c >= best.second))
+        return;
+      const Vec3d x = m.positions[c];
+      if (std::abs(dot(x - p0, n)) > 3 * distance * std::sqrt(n2)) return;
+      // Barycentric coordinates of x's projection onto the face's plane: the edge is the one
+      // opposite the smallest.
+      const std::array<double, 3> l = {dot(cross(p2 - p1, x - p1), n) / n2,
+                                       dot(cross(p0 - p2, x - p2), n) / n2,
+                                       dot(cross(p1 - p0, x - p0), n) / n2};
+      const int k = int(std::min_element(l.begin(), l.end()) - l.begin());
+      if (std::abs(l[k]) > kOnEdge || l[(k + 1) % 3] < kOnEdge || l[(k + 2) % 3] < kOnEdge) return;
+      // Edge t[k + 1] -> t[k + 2], opposite t[k]; near either end the cut turns there already.
+      const Index a = t[(k + 1) % 3], e = t[(k + 2) % 3];
+      if ((cover[a] == kInvalid) == (cover[e] == kInvalid)) return;
+      const Vec3d &pa = m.positions[a], &pe = m.positions[e];
+      const double s = dot(x - pa, pe - pa) / squared_norm(pe - pa);
+      if (s < kOnBorder || s > 1 - kOnBorder) return;
+      best = {edge_key(a, e), c};
+    });
+    found[f] = best;
+  });
+  // Select: each edge once, with the lowest-numbered corner any of its faces found.
+  std::vector<std::pair<std::uint64_t, Index>> split;
+  for (const auto& fc : found) {
+    if (fc.second != kInvalid) split.push_back(fc);
+  }
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end(),
+                          [](const auto& x, const auto& y) { return x.first == y.first; }),
+              split.end());
+  if (split.empty()) return 0;
+  // Apply: a new vertex per edge (in key order) where the corner projects onto it, then each face
+  // on a split edge in two (a face with more split edges: a fan from the first split point).
+  std::vector<Index> split_vertex(split.size());
+  for (std::size_t i = 0; i < split.size(); ++i) {
+    const Index a = Index(split[i].first >> 32), e = Index(split[i].first & 0xffffffffu);
+    const Vec3d pa = m.positions[a], pe = m.positions[e], x = m.positions[split[i].second];
+    split_vertex[i] = add_edge_point(w, a, e, dot(x - pa, pe - pa) / squared_norm(pe - pa));
+    cover.push_back(m.vertex_patch[split[i].second]);
+  }
+  const auto split_of = [&](Index a, Index e) {
+    const std::uint64_t k = edge_key(a, e);
+    const auto it =
+        std::lower_bound(split.begin(), split.end(), std::pair<std::uint64_t, Index>{k, 0});
+    return it != split.end() && it->first == k ? split_vertex[std::size_t(it - split.begin())]
+                                               : kInvalid;
+  };
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Face t = m.faces[f];
+    std::array<Index, 3> e;  // the split point of edge t[c] -> t[c + 1], or kInvalid
+    int first = -1;
+    for (int c = 0; c < 3; ++c) {
+      e[c] = split_of(t[c], t[(c + 1) % 3]);
+      if (e[c] != kInvalid && first < 0) first = c;
+    }
+    if (first < 0) continue;
+    // The face's outline from t[first + 1] round to e[first], its split points included; a fan
+    // from e[first] keeps the winding.
+    std::vector<Index> ring;
+    for (int k = 1; k <= 3; ++k) {
+      const int c = (first + k) % 3;
+      ring.push_back(t[c]);
+      if (e[c] != kInvalid) ring.push_back(e[c]);
+    }
+    std::vector<Face> pieces;
+    for (std::size_t k = 0; k + 2 < ring.size(); ++k) {
+      pieces.push_back({ring.back(), ring[k], ring[k + 1], kInvalid});
+    }
+    m.faces[f] = pieces[0];
+    for (std::size_t k = 1; k < pieces.size(); ++k) {
+      m.faces.push_back(pieces[k]);
+      m.face_patch.push_back(m.face_patch[f]);
+      w.face_old.push_back(w.face_old[f]);
+    }
+  }
+  return split.size();
+}
+
 // Grows the covered region of each patch from its covered seeds across its own edges
 // (breadth-first, ring by ring: each ring is checked in parallel and committed in order).
 // Returns the covering patch per vertex (kInvalid: uncovered), or nothing when cancelled.
@@ -618,6 +762,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   // An edge between corners on different lower patches may leave them on its way (across a
   // gap between them, or round the inner corner where they meet): it is split there, so that
   // the cut below can keep that part.
+  insert_lower_corners(w, b, cover, distance);
   split_edges_off(w, cover, on_lower);
   if (progress.cancelled()) return stats;
 

@@ -335,6 +335,26 @@ TEST(CliMerge, GappedChineHullMergesWithKnucklesAndBoundaries) {
   EXPECT_GT(fs::file_size(dir / "merged_boundaries.vtk"), 100u);
 }
 
+// Every defect the generator has, at once (0.1 m gaps, 5% overlaps, repeated control rows,
+// every third patch flipped), on the 24-patch round-bilge hull: the merge failed with edges of
+// three faces (exit 5) until the cut of the overlaps turned at the lower patches' corners.
+TEST(CliMerge, HullWithEveryDefectMergesIntoOneSurface) {
+  const fs::path dir = test::scratch_dir("cli_merge_defects");
+  const fs::path igs = dir / "defects.igs", vtu = dir / "merged.vtu";
+  ASSERT_EQ(test::run_hullmesh("-q generate round-bilge --patches 24 --gap 0.1 --overlap 0.05 "
+                               "--duplicate-points --flip-every 3 -o '" +
+                               igs.string() + "'")
+                .exit_code,
+            0);
+  const auto r = test::run_hullmesh("merge '" + igs.string() + "' -o '" + vtu.string() +
+                                    "' --triangles 40000");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("0 non-manifold edges, 0 inconsistent edges"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("boundary loops: 1;"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(" hole "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("overlaps removed: 0 triangles"), std::string::npos) << r.out;
+}
+
 // ship_449_patches.iges: aft of x = -48.5 m its side ends at z = 5 m, forward of it a raised
 // side (patch 305) rises to 16.5 m, open at its aft end. The low deck edge ran on to the step as
 // a "hole" (its last 1.2-1.7 m, which had the raised side in a neighbouring x slab), and the

@@ -61,9 +61,12 @@ Case random_case(std::uint64_t seed) {
   // Not both: on a full hull with gaps, the centre-plane cut of the merged surface leaves
   // zero-area slivers on y = 0 (issue 4; replay seed 1000 with the gap put back).
   if (!full && pick(3) == 0) g << " --gap " << 1e-4 * length;
-  // Overlapping patches are left out: with another defect they still break the merge (a
-  // non-manifold seam, seed 1005) or leave zero-area slivers at the waterplane cut (seed 1006),
-  // issue 4's open work. Put `--overlap 0.05` back here to see them.
+  // Overlapping patches are left out. Put `if (pick(3) == 0) g << " --overlap 0.05";` back here
+  // to see why (2026-12-04, 24 cases): the volume this test compares against, the patches'
+  // exact integrals, counts every overlap twice (seeds 1005, 1008, 1012, 1016, 1019: 5-10% off),
+  // and the merge and cut still leave zero-area faces: at the waterplane cut with a gap and an
+  // overlap (seed 1006), near the keel of a full hull (seed 1019), issue 4's open work. Seed
+  // 1005's non-manifold seam, noted here before, no longer happens (nor at e1ffc1c).
   if (pick(3) == 0) g << " --duplicate-points";
   if (pick(3) == 0) g << " --flip-every " << 2 + pick(3);
   Case c;
