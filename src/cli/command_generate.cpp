@@ -67,7 +67,8 @@ void register_generate(CLI::App& app, const GlobalOptions& global, Action& actio
   cmd->add_option("--depth", o->spec.depth, "Depth D, keel to deck (m)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--draft", o->spec.draft, "Design draft T (m)")->check(CLI::PositiveNumber);
-  cmd->add_option("--gap", o->spec.defects.gap, "Defect: gap between patches (m)")
+  cmd->add_option("--gap", o->spec.defects.gap,
+                  "Defect: gaps between patches, at most this wide (m)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--overlap", o->spec.defects.overlap,
                   "Defect: overlap of neighbouring patches (fraction of a patch)")

@@ -2,6 +2,7 @@
 // rows, flipped parameterizations, all leaving the geometry where it was.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "nurbs/generate_hull.h"
@@ -14,6 +15,10 @@ namespace {
 using test::kKinds;
 using test::spec_of;
 
+// `--gap M` makes gaps of at most about M: each side recedes by M / 2 at its fastest point along
+// it, less where the surface there is slower (measured: 0.15 to 1.11 M at three points of each
+// side; the most at a transom corner). Until 2026-12-04 the sides receded by M / 2 at their mean
+// rate, and the gaps reached twice M (0.22 m on hulls asked for 0.1 m).
 TEST(GenerateDefects, GapsHaveTheAskedSize) {
   for (HullKind kind : kKinds) {
     HullSpec spec = spec_of(kind, 48, true);
@@ -22,19 +27,24 @@ TEST(GenerateDefects, GapsHaveTheAskedSize) {
     ASSERT_EQ(hull.patches.size(), 48u);
     const test::EdgeIndex index(hull.patches);
     int checked = 0;
+    double widest = 0;
     for (std::size_t k = 0; k < hull.patches.size(); ++k) {
       const NurbsSurface& s = hull.patches[k].surface;
       for (int side = 0; side < 4; ++side) {
         if (test::edge_length(s, side) < 0.5) continue;  // short sides near collapsed edges
-        const Vec3d q = test::edge_point(s, side, 0.5);
-        if (test::on_free_edge(q, spec, 1e-9)) continue;
-        const double d = index.distance(q, k, 5 * spec.defects.gap);
-        ++checked;
-        EXPECT_GT(d, 0.5 * spec.defects.gap) << to_string(kind) << " " << hull.patches[k].name;
-        EXPECT_LT(d, 1.6 * spec.defects.gap) << to_string(kind) << " " << hull.patches[k].name;
+        for (double t : {0.2, 0.5, 0.8}) {
+          const Vec3d q = test::edge_point(s, side, t);
+          if (test::on_free_edge(q, spec, 1e-9)) continue;
+          const double d = index.distance(q, k, 5 * spec.defects.gap);
+          ++checked;
+          widest = std::max(widest, d);
+          EXPECT_GT(d, 0.1 * spec.defects.gap) << to_string(kind) << " " << hull.patches[k].name;
+          EXPECT_LT(d, 1.15 * spec.defects.gap) << to_string(kind) << " " << hull.patches[k].name;
+        }
       }
     }
-    EXPECT_GT(checked, 48);
+    EXPECT_GT(checked, 3 * 48);
+    EXPECT_GT(widest, 0.9 * spec.defects.gap) << to_string(kind);  // the asked size is reached
   }
 }
 

@@ -474,20 +474,23 @@ TEST(Merge, OverlapsAreCutAtSeamsAndMultiPatchCorners) {
   }
 }
 
-// Gaps and overlaps together (5 cm gaps, 5% overlaps; wigley, round-bilge and chine of 24
-// patches): each patch's border runs a little outside the border of the patch it overlaps. A
-// covered border vertex then counted as on the lower border, and the cut kept a chord from it
-// across the lower patch's corner, doubling that corner: round-bilge and wigley had edges with
-// three faces (the merge failed) until the lower corners were inserted into the edges the cut
-// crosses. The hull is covered once: its area is that of the hull with neither defect, to 0.5%
-// (the gaps are closed by stretching the faces beside them).
+// Gaps and overlaps together (gaps up to 0.1 m, 5% overlaps; wigley, round-bilge and chine of
+// 24 patches at 40,000 triangles): each patch's border runs a little outside the border of the
+// patch it overlaps. A covered border vertex then counted as on the lower border, and the cut
+// kept a chord from it across the lower patch's corner, doubling that corner: wigley and
+// round-bilge had edges with three faces (the merge failed) and chine a hole, until the lower
+// corners were inserted into the edges the cut crosses. The hull is covered once: its area is
+// that of the hull with neither defect, to 0.5% (the gaps are closed by stretching the faces
+// beside them).
 TEST(Merge, GapsAndOverlapsTogetherAreCutAndClosed) {
   for (HullKind kind : {HullKind::kWigley, HullKind::kRoundBilge, HullKind::kChine}) {
-    const Merged ref = merge_of(generated(kind, 24).patches);
+    const std::vector<Patch> plain = generated(kind, 24).patches;
+    const double edge = edge_length_for_triangles(plain, 40000);
+    const Merged ref = merge_of(plain, edge);
     HullDefects d;
-    d.gap = 0.05;
+    d.gap = 0.1;
     d.overlap = 0.05;
-    const Merged m = merge_of(generated(kind, 24, d).patches);
+    const Merged m = merge_of(generated(kind, 24, d).patches, edge);
     const std::string what = std::string(to_string(kind)) + ", 24 patches, gaps and overlaps";
     expect_clean_half_hull(m, what);
     EXPECT_GT(m.merged.report.overlap_area_removed, 0.0) << what;
