@@ -137,12 +137,12 @@ TEST(Coarsen, ChineHullKeepsKnucklesBoundariesAndTheBound) {
   const CoarsenedMesh c = coarsen_of(f, o);
   expect_sound(f, c, o);
   EXPECT_TRUE(c.report.target_reached);
-  // Knuckle and boundary lines survive: their length is that of the fine lines (chords of a
-  // curved line are a little shorter).
+  // Knuckle and boundary lines survive: their length is that of the fine lines to issue 5's
+  // 0.1% (chords of a curved line are a little shorter; measured 1.4e-6 short).
   double fine_len = f.features.knuckle_length();
   for (const BoundaryRun& b : f.features.boundaries) fine_len += b.length;
   const double coarse_len = line_length(c.mesh, c.feature_edges);
-  EXPECT_NEAR(coarse_len / fine_len, 1.0, 2e-3);
+  EXPECT_NEAR(coarse_len / fine_len, 1.0, 1e-3);
   EXPECT_GT(share_angles_30(c.mesh), 0.93);
 }
 
