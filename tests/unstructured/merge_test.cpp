@@ -498,6 +498,31 @@ TEST(Merge, GapsAndOverlapsTogetherAreCutAndClosed) {
   }
 }
 
+// Gaps of up to 0.1 m (1e-3 L) on a fine tessellation (128,000 triangles, border edges of a few
+// centimetres) with the tolerance set to 0.15 m: the two sides of a gap are several edges apart.
+// Welds were held to 0.6 of the local edge whatever the tolerance, and every gap stayed open (12
+// loops on wigley, 35 on round-bilge); the sides now weld where they are each other's nearest.
+TEST(Merge, SetToleranceClosesGapsSeveralEdgesWide) {
+  for (HullKind kind : {HullKind::kWigley, HullKind::kRoundBilge}) {
+    HullDefects d;
+    d.gap = 0.1;
+    const std::vector<Patch> patches = generated(kind, 24, d).patches;
+    TessellateOptions to;
+    to.edge_length = edge_length_for_triangles(patches, 128000);
+    const Tessellation t = tessellate(patches, to, silent_progress());
+    MergeOptions mo;
+    mo.gap_tolerance = 0.15;
+    const MergedSurface m = merge_patches(patches, t.mesh, mo, silent_progress());
+    const EdgeAdjacency adj = build_edge_adjacency(m.mesh.faces, m.mesh.vertex_count());
+    SCOPED_TRACE(to_string(kind));
+    EXPECT_TRUE(adj.nonmanifold_edges.empty());
+    EXPECT_TRUE(adj.inconsistent_edges.empty());
+    EXPECT_EQ(adj.boundary_loops.size(), 1u);
+    EXPECT_TRUE(m.report.open_gaps.empty());
+    EXPECT_GT(m.report.vertices_welded, 1000u);
+  }
+}
+
 TEST(Merge, SameBytesWithOneTwoAndEightThreads) {
   // Gaps (the snap), overlaps (the cut, whose checks run in parallel), and both.
   HullDefects gaps, overlaps, both;
