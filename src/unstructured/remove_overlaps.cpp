@@ -3,8 +3,9 @@
 // snap_borders can stitch them there.
 //
 // collect seeds (border vertices lying on a lower-numbered patch, checked on the NURBS through
-// the Embree closest-point query) -> grow the covered region over each patch -> split the edges
-// that leave the patches below between two covered corners -> cut every face along the border
+// the Embree closest-point query) -> grow the covered region over each patch -> insert the lower
+// patches' corners into the edges the cut crosses -> split the edges that leave the patches
+// below between two covered corners -> cut every face along the border
 // of the patches below (marching triangles: each edge from a covered corner to an uncovered one
 // is cut where it leaves them, found by bisection on their exact surfaces) and keep the part
 // outside. An overlap narrower than an edge covers only border vertices; their edges are cut
@@ -333,7 +334,7 @@ constexpr double kOnEdge = 0.05;
 // gaps and overlaps together: the upper patch's border runs a little outside the lower one's, its
 // covered border vertex then counts as on the lower border (its border edge leaves at once), and
 // the faces round it keep a chord across the lower patch's corner. Each such corner (of a patch
-// numbered below the edge's, within the overlap distance of the face's plane, and further than
+// numbered below the edge's, within three overlap distances of the face's plane, further than
 // kOnBorder of the edge from either end, where the cut's own rule turns already) is inserted into
 // the edge as a new vertex covered by its patch, splitting the faces on that edge, so that the
 // cut turns there. An edge takes the lowest-numbered such corner. Returns the corners inserted.
@@ -759,10 +760,12 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
     const Vec3d d = x - cp.point;
     return norm(d - dot(d, cp.normal) * cp.normal) <= kPastBorder * distance;
   };
+  // The corners of the lower patches on the edges the cut crosses become vertices, so that the
+  // cut turns at them.
+  insert_lower_corners(w, b, cover, distance);
   // An edge between corners on different lower patches may leave them on its way (across a
   // gap between them, or round the inner corner where they meet): it is split there, so that
   // the cut below can keep that part.
-  insert_lower_corners(w, b, cover, distance);
   split_edges_off(w, cover, on_lower);
   if (progress.cancelled()) return stats;
 
