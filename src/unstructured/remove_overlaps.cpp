@@ -135,6 +135,17 @@ std::vector<BBox3d> patch_boxes(const SurfaceMesh& m, std::size_t patch_count, d
   return box;
 }
 
+// Longest edge of m's faces, m.
+double longest_edge(const SurfaceMesh& m) {
+  double longest = 0;
+  for (const Face& t : m.faces) {
+    for (int k = 0; k < 3; ++k) {
+      longest = std::max(longest, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
+    }
+  }
+  return longest;
+}
+
 // The faces with keep[f] set, over all of m's vertices (unused ones are harmless).
 SurfaceMesh faces_kept(const SurfaceMesh& m, std::span<const std::uint8_t> keep) {
   SurfaceMesh sub;
@@ -174,13 +185,7 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       points[i] = {candidates[i], candidates[i], kInvalid, m.vertex_patch[candidates[i]]};
     }
-    double longest = 0;
-    for (const Face& t : m.faces) {
-      for (int k = 0; k < 3; ++k) {
-        longest = std::max(longest, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
-      }
-    }
-    const SegmentGrid grid(m.positions, points, longest + margin);
+    const SegmentGrid grid(m.positions, points, longest_edge(m) + margin);
     parallel_for(0, m.face_count(), [&](std::size_t f) {
       if (!keep[f]) return;
       const Face& t = m.faces[f];
@@ -244,10 +249,51 @@ Index add_edge_point(Work& w, Index a, Index e, double t) {
   return v;
 }
 
+// Splits every face at the new vertices on its edges (mid_of(a, e): the vertex on edge a-e, or
+// kInvalid): one, two or three split edges give two, three or four triangles. Only faces with a
+// covered corner are looked at: every split edge has a covered end (most faces have none, and the
+// searches cost 3 ms over kcs's 41,000 faces). Faces keep their provenance; new pieces go last.
+template <class MidOf>
+void split_faces_at(Work& w, std::span<const PatchId> cover, const MidOf& mid_of) {
+  SurfaceMesh& m = w.mesh;
+  const std::size_t faces = m.face_count();
+  for (std::size_t f = 0; f < faces; ++f) {
+    const Face t = m.faces[f];
+    if (cover[t[0]] == kInvalid && cover[t[1]] == kInvalid && cover[t[2]] == kInvalid) continue;
+    std::array<Index, 3> e;  // the new vertex on edge t[c] -> t[c + 1], or kInvalid
+    int n = 0;
+    for (int c = 0; c < 3; ++c) n += (e[c] = mid_of(t[c], t[(c + 1) % 3])) != kInvalid;
+    if (n == 0) continue;
+    std::vector<Face> pieces;
+    if (n == 3) {
+      pieces = {{t[0], e[0], e[2], kInvalid},
+                {e[0], t[1], e[1], kInvalid},
+                {e[2], e[1], t[2], kInvalid},
+                {e[0], e[1], e[2], kInvalid}};
+    } else {
+      // Rotate so that the split edges come first: 0 (and 1 when two are split).
+      int r = 0;
+      while (!(e[r] != kInvalid && (n == 1 || e[(r + 1) % 3] != kInvalid))) ++r;
+      const Index a = t[r], b = t[(r + 1) % 3], c = t[(r + 2) % 3];
+      const Index ab = e[r], bc = e[(r + 1) % 3];
+      if (n == 1) {
+        pieces = {{a, ab, c, kInvalid}, {ab, b, c, kInvalid}};
+      } else {
+        pieces = {{ab, b, bc, kInvalid}, {a, ab, bc, kInvalid}, {a, bc, c, kInvalid}};
+      }
+    }
+    m.faces[f] = pieces[0];
+    for (std::size_t k = 1; k < pieces.size(); ++k) {
+      m.faces.push_back(pieces[k]);
+      m.face_patch.push_back(m.face_patch[f]);
+      w.face_old.push_back(w.face_old[f]);
+    }
+  }
+}
+
 // Splits every edge between corners covered by different lower patches at the first of its
 // points at 1/2, 1/4 and 3/4 that is on none of them (on_lower(x, patch) false), and the faces
-// on it (one, two or three split edges: two, three or four triangles). The new vertices are
-// uncovered; faces keep their provenance.
+// on it (split_faces_at). The new vertices are uncovered.
 template <class OnLower>
 void split_edges_off(Work& w, std::vector<PatchId>& cover, const OnLower& on_lower) {
   SurfaceMesh& m = w.mesh;
@@ -284,41 +330,7 @@ void split_edges_off(Work& w, std::vector<PatchId>& cover, const OnLower& on_low
     const auto it = std::lower_bound(edges.begin(), edges.end(), k);
     return it != edges.end() && *it == k ? mid[std::size_t(it - edges.begin())] : kInvalid;
   };
-  const std::size_t faces = m.face_count();
-  for (std::size_t f = 0; f < faces; ++f) {
-    const Face t = m.faces[f];
-    // A split edge has both ends covered: most faces have no covered corner (the searches below
-    // cost 3 ms over kcs's 41,000 faces).
-    if (cover[t[0]] == kInvalid && cover[t[1]] == kInvalid && cover[t[2]] == kInvalid) continue;
-    std::array<Index, 3> e;  // midpoint of edge t[c] -> t[c + 1], or kInvalid
-    int n = 0;
-    for (int c = 0; c < 3; ++c) n += (e[c] = mid_of(t[c], t[(c + 1) % 3])) != kInvalid;
-    if (n == 0) continue;
-    std::vector<Face> pieces;
-    if (n == 3) {
-      pieces = {{t[0], e[0], e[2], kInvalid},
-                {e[0], t[1], e[1], kInvalid},
-                {e[2], e[1], t[2], kInvalid},
-                {e[0], e[1], e[2], kInvalid}};
-    } else {
-      // Rotate so that the split edges come first: 0 (and 1 when two are split).
-      int r = 0;
-      while (!(e[r] != kInvalid && (n == 1 || e[(r + 1) % 3] != kInvalid))) ++r;
-      const Index a = t[r], b = t[(r + 1) % 3], c = t[(r + 2) % 3];
-      const Index ab = e[r], bc = e[(r + 1) % 3];
-      if (n == 1) {
-        pieces = {{a, ab, c, kInvalid}, {ab, b, c, kInvalid}};
-      } else {
-        pieces = {{ab, b, bc, kInvalid}, {a, ab, bc, kInvalid}, {a, bc, c, kInvalid}};
-      }
-    }
-    m.faces[f] = pieces[0];
-    for (std::size_t k = 1; k < pieces.size(); ++k) {
-      m.faces.push_back(pieces[k]);
-      m.face_patch.push_back(m.face_patch[f]);
-      w.face_old.push_back(w.face_old[f]);
-    }
-  }
+  split_faces_at(w, cover, mid_of);
 }
 
 // Corners of the patches below (their border turns by more than this there) are inserted into
@@ -365,13 +377,7 @@ std::size_t insert_lower_corners(Work& w, const Border& b, std::vector<PatchId>&
   // a patch below on one of its edges, as (edge key, corner).
   const std::size_t nf = m.face_count();
   std::vector<std::pair<std::uint64_t, Index>> found(nf, {0, kInvalid});
-  double longest = 0;
-  for (const Face& t : m.faces) {
-    for (int k = 0; k < 3; ++k) {
-      longest = std::max(longest, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
-    }
-  }
-  const SegmentGrid grid(m.positions, corners, longest + distance);
+  const SegmentGrid grid(m.positions, corners, longest_edge(m) + distance);
   parallel_for(0, nf, [&](std::size_t f) {
     const Face& t = m.faces[f];
     int covered = 0;
@@ -418,8 +424,8 @@ std::size_t insert_lower_corners(Work& w, const Border& b, std::vector<PatchId>&
                           [](const auto& x, const auto& y) { return x.first == y.first; }),
               split.end());
   if (split.empty()) return 0;
-  // Apply: a new vertex per edge (in key order) where the corner projects onto it, then each face
-  // on a split edge in two (a face with more split edges: a fan from the first split point).
+  // Apply: a new vertex per edge (in key order) where the corner projects onto it, then the faces
+  // on the split edges.
   std::vector<Index> split_vertex(split.size());
   for (std::size_t i = 0; i < split.size(); ++i) {
     const Index a = Index(split[i].first >> 32), e = Index(split[i].first & 0xffffffffu);
@@ -434,34 +440,7 @@ std::size_t insert_lower_corners(Work& w, const Border& b, std::vector<PatchId>&
     return it != split.end() && it->first == k ? split_vertex[std::size_t(it - split.begin())]
                                                : kInvalid;
   };
-  for (std::size_t f = 0; f < nf; ++f) {
-    const Face t = m.faces[f];
-    std::array<Index, 3> e;  // the split point of edge t[c] -> t[c + 1], or kInvalid
-    int first = -1;
-    for (int c = 0; c < 3; ++c) {
-      e[c] = split_of(t[c], t[(c + 1) % 3]);
-      if (e[c] != kInvalid && first < 0) first = c;
-    }
-    if (first < 0) continue;
-    // The face's outline from t[first + 1] round to e[first], its split points included; a fan
-    // from e[first] keeps the winding.
-    std::vector<Index> ring;
-    for (int k = 1; k <= 3; ++k) {
-      const int c = (first + k) % 3;
-      ring.push_back(t[c]);
-      if (e[c] != kInvalid) ring.push_back(e[c]);
-    }
-    std::vector<Face> pieces;
-    for (std::size_t k = 0; k + 2 < ring.size(); ++k) {
-      pieces.push_back({ring.back(), ring[k], ring[k + 1], kInvalid});
-    }
-    m.faces[f] = pieces[0];
-    for (std::size_t k = 1; k < pieces.size(); ++k) {
-      m.faces.push_back(pieces[k]);
-      m.face_patch.push_back(m.face_patch[f]);
-      w.face_old.push_back(w.face_old[f]);
-    }
-  }
+  split_faces_at(w, cover, split_of);
   return split.size();
 }
 

@@ -149,22 +149,19 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
   if (nb > 1 && reach > 0) {
     const std::vector<ClosePair> close = find_close_pairs(points, group, reach);
     // A weld is held to a share of the edges at its ends (kEndFraction of twice them), so that it
-    // leaves no sliver and a border does not weld along itself in a chain. A tolerance the user
-    // set goes further between two vertices that are each other's nearest of another patch: the
-    // two sides of a gap several edges wide on a fine mesh, which capped welds left open.
-    std::vector<double> nearest;
-    if (options.gap_tolerance > 0) {
-      nearest.assign(nb, std::numeric_limits<double>::infinity());
-      for (const ClosePair& p : close) {
-        nearest[p.a] = std::min(nearest[p.a], p.distance);
-        nearest[p.b] = std::min(nearest[p.b], p.distance);
-      }
+    // leaves no sliver and a border does not weld along itself in a chain, except between two
+    // vertices that are each other's nearest of another patch: they weld up to the tolerance, the
+    // two sides of a gap several edges wide on a fine mesh with --gap-tol set, which capped welds
+    // left open. (The default tolerance, half the edge, is within the cap almost everywhere.)
+    std::vector<double> nearest(nb, std::numeric_limits<double>::infinity());
+    for (const ClosePair& p : close) {
+      nearest[p.a] = std::min(nearest[p.a], p.distance);
+      nearest[p.b] = std::min(nearest[p.b], p.distance);
     }
     for (const ClosePair& p : close) {
       const double cap =
           std::min(kEndFraction * 2 * b.edge_length[p.a], kEndFraction * 2 * b.edge_length[p.b]);
-      const bool mutual =
-          !nearest.empty() && p.distance <= nearest[p.a] && p.distance <= nearest[p.b];
+      const bool mutual = p.distance <= nearest[p.a] && p.distance <= nearest[p.b];
       const double limit = std::min({tol[p.a], tol[p.b], mutual ? tol[p.a] : cap});
       // Coincident vertices weld whatever their inward directions: the two halves of a hull meet
       // at a fine stem or keel well inside the fold test's 60 degrees, and a fold does not put
