@@ -68,6 +68,53 @@ std::vector<Face> clip_ears(const SurfaceMesh& m, std::vector<Index> r, const Ve
   return out;
 }
 
+// Heights of a three-vertex hole, over its longest side, at or below which it is flat: a vertex
+// that ended on (or within a hair of) the border edge across it, a T-junction the snap left. A
+// triangle there has no area; the face across that edge is split at the vertex instead.
+constexpr double kFlatHole = 1e-3;
+// Where along that side the vertex must lie (as a fraction from either end) for the split.
+constexpr double kFlatHoleEnd = 0.02;
+
+// Closes the flat three-vertex hole r (a boundary loop, edges[i] leaving r[i]) by splitting the
+// face across its longest side at the third vertex, as a T-junction is split. False (and nothing
+// changed) when the hole is not flat, the vertex is beyond that side's ends, or that face was
+// split already in this pass (`split`, per face).
+bool split_across_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<Index>& r,
+                            const std::vector<Index>& edges, std::vector<std::uint8_t>& split) {
+  SurfaceMesh& m = w.mesh;
+  std::size_t side = 0;  // the longest side runs r[side] -> r[side + 1]
+  double longest = -1;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double l = norm(m.positions[r[(i + 1) % 3]] - m.positions[r[i]]);
+    if (l > longest) longest = l, side = i;
+  }
+  const Index a = r[side], c = r[(side + 1) % 3], b = r[(side + 2) % 3];
+  const Vec3d ac = m.positions[c] - m.positions[a];
+  const Vec3d ab = m.positions[b] - m.positions[a];
+  if (!(longest > 0)) return false;
+  const double height = norm(cross(ac, ab)) / longest;
+  const double t = dot(ab, ac) / (longest * longest);
+  if (height > kFlatHole * longest || t < kFlatHoleEnd || t > 1 - kFlatHoleEnd) return false;
+  const Index f = adj.edges[edges[side]].first_slot / 4;
+  if (split[f]) return false;
+  const Face face = m.faces[f];
+  int k = 0;  // the face's corner where the side begins in its own winding
+  while (k < 3 &&
+         !((face[k] == a && face[(k + 1) % 3] == c) || (face[k] == c && face[(k + 1) % 3] == a))) {
+    ++k;
+  }
+  if (k == 3) return false;
+  const Index p = face[k], q = face[(k + 1) % 3], d = face[(k + 2) % 3];
+  if (d == b) return false;  // the hole is that face's own mirror: nothing to split
+  m.faces[f] = {p, b, d, kInvalid};
+  m.faces.push_back({b, q, d, kInvalid});
+  m.face_patch.push_back(m.face_patch[f]);
+  w.face_old.push_back(w.face_old[f]);
+  split[f] = 1;
+  split.push_back(1);
+  return true;
+}
+
 // A boundary loop that passes a vertex twice (a hole touching the hull's outline at one vertex)
 // is several cycles; cut it there. Each cycle is (vertices, edges), edges[i] leaving vertices[i].
 std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const BoundaryLoop& loop) {
@@ -113,6 +160,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
     const std::uint64_t k = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
     return std::binary_search(edge_keys.begin(), edge_keys.end(), k);
   };
+  std::vector<std::uint8_t> split(m.face_count(), 0);  // faces split_across_flat_hole changed
   for (const BoundaryLoop& loop : adj.boundary_loops) {
     if (!loop.closed) continue;
     for (const auto& [r, edges] : cycles_of(loop)) {
@@ -150,6 +198,10 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
       if (r.size() > 4 && !pinhole && !slit) continue;
       // The loop follows its faces' winding, so the new faces run against it.
       std::vector<Face> add;
+      if (r.size() == 3 && split_across_flat_hole(w, adj, r, edges, split)) {
+        ++filled;
+        continue;
+      }
       if (r.size() == 3) {
         add.push_back({r[0], r[2], r[1], kInvalid});
       } else if (r.size() > 4 && pinhole) {

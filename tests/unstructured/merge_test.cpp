@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -300,6 +302,85 @@ TEST(MergeSteps, HoleWithBothDiagonalsTakenIsNamedAsLeftOpen) {
   std::set<Index> corners;
   for (const auto& [a, b] : left_open) corners.insert({a, b});
   EXPECT_EQ(corners, (std::set<Index>{5, 6, 9, 10}));
+}
+
+// A 3 x 3 grid of unit cells (patch 0 below y = 1, patch 1 above) whose middle upper cell is
+// fanned from a vertex b at (1.5, b_y) instead of the cell's corner (1, 1)-(2, 1) edge: the faces
+// along that edge leave a hole of three vertices, (1, 1), b and (2, 1).
+merge::Work grid_with_three_vertex_hole(double b_y) {
+  merge::Work w;
+  SurfaceMesh& m = w.mesh;
+  auto at = [](int i, int j) { return Index(4 * j + i); };
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) m.positions.push_back({double(i), double(j), 0.0});
+  }
+  const Index b = Index(m.positions.size());
+  m.positions.push_back({1.5, b_y, 0.0});
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      const PatchId p = j == 0 ? 0 : 1;
+      if (i == 1 && j == 1) {
+        m.faces.push_back({at(1, 1), b, at(1, 2), kInvalid});
+        m.faces.push_back({b, at(2, 1), at(2, 2), kInvalid});
+        m.faces.push_back({b, at(2, 2), at(1, 2), kInvalid});
+        m.face_patch.insert(m.face_patch.end(), {p, p, p});
+        continue;
+      }
+      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), kInvalid});
+      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1), kInvalid});
+      m.face_patch.insert(m.face_patch.end(), {p, p});
+    }
+  }
+  m.vertex_patch.assign(m.positions.size(), 0);
+  m.vertex_uv.assign(m.positions.size(), {});
+  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
+  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+  return w;
+}
+
+double smallest_face_area(const SurfaceMesh& m) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Face& f : m.faces) smallest = std::min(smallest, face_area(m.positions, f));
+  return smallest;
+}
+
+// A vertex left on the border edge across it (a T-junction the snap did not split; the generated
+// 300-patch round-bilge hull's transom at 10,000 and 20,000 triangles) makes a hole of three
+// vertices with no area. A triangle there had no area either (`--validate` refused it); the face
+// across the edge is split at the vertex instead, as a T-junction is.
+TEST(MergeSteps, FlatThreeVertexHoleSplitsTheFaceAcross) {
+  merge::Work w = grid_with_three_vertex_hole(1.0);
+  const SurfaceMesh& m = w.mesh;
+  const std::size_t faces = m.face_count();
+  const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
+  ASSERT_EQ(before.boundary_loops.size(), 2u);
+  std::vector<std::array<Index, 2>> left_open;
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 1u);
+  EXPECT_TRUE(left_open.empty());
+  EXPECT_EQ(m.face_count(), faces + 1);
+  EXPECT_GT(smallest_face_area(m), 0.2);  // halves of a unit cell's triangle: 0.25
+  const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(after.nonmanifold_edges.empty());
+  EXPECT_TRUE(after.inconsistent_edges.empty());
+  EXPECT_EQ(after.boundary_loops.size(), 1u);
+  // Both halves keep the split face's patch (the lower one) and its input triangle.
+  EXPECT_EQ(m.face_patch.back(), 0u);
+  EXPECT_EQ(w.face_old.size(), m.face_count());
+  EXPECT_EQ(m.face_patch[w.face_old.back()], 0u);
+}
+
+// A hole of three vertices with area (b well off the edge) still gets its triangle.
+TEST(MergeSteps, ThreeVertexHoleWithAreaGetsATriangle) {
+  merge::Work w = grid_with_three_vertex_hole(1.2);
+  const SurfaceMesh& m = w.mesh;
+  const std::size_t faces = m.face_count();
+  const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, nullptr), 1u);
+  EXPECT_EQ(m.face_count(), faces + 1);
+  const Face& added = m.faces.back();
+  EXPECT_NEAR(face_area(m.positions, added), 0.1, 1e-12);  // base 1, height 0.2
+  EXPECT_GT(dot(face_normal(m.positions, added), Vec3d{0, 0, 1}), 0.99);
+  EXPECT_EQ(build_edge_adjacency(m.faces, m.vertex_count()).boundary_loops.size(), 1u);
 }
 
 // The generated 1,000-patch round-bilge hull at 40,000 triangles: two transom patches (995 and
