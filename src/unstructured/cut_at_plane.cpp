@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "mesh/adjacency.h"
+#include "nurbs/nurbs_surface.h"
 #include "query/surface_refine.h"
 
 namespace hm {
@@ -112,29 +113,43 @@ bool snap_onto_plane(const NurbsSurface& s, const query::ParamDomain& d, const A
 
 // The crossing of edge (a, b) with the plane, on patch p's NURBS (a patch of a face at
 // the edge): along the edge's parameter segment when both corners name p; otherwise the point of
-// the section curve nearest the linear crossing, from the corner that names p (or from a on a's
-// patch when neither does).
+// the section curve nearest the linear crossing, from the corner that names p (or from p's
+// closest point to the linear crossing when neither does).
 query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
                                          std::span<const query::ParamDomain> domains,
                                          const SurfaceMesh& m, Index a, Index b, PatchId p,
                                          const AxisPlane& plane, double tol, PatchId& used) {
   const Vec3d pa = m.positions[a], pb = m.positions[b];
   const double f = plane.side(pa) / (plane.side(pa) - plane.side(pb));
-  Vec2d corners[2] = {m.vertex_uv[a], m.vertex_uv[b]};
-  if (m.vertex_patch[a] != p || m.vertex_patch[b] != p) {
-    if (m.vertex_patch[b] == p) {
-      corners[0] = corners[1];
-    } else if (m.vertex_patch[a] != p) {
-      p = m.vertex_patch[a];
-    }
-    corners[1] = corners[0];  // a zero segment: refine_plane_edge takes the nearest point
-  }
-  used = p;
-  query::unwrap_corners(domains[p], corners, 2);
+  const Vec3d linear = pa + f * (pb - pa);
   Vec3d normal;
   normal[plane.axis] = 1;
-  return query::refine_plane_edge(patches[p].surface, domains[p], normal, plane.on_plane(pa),
-                                  corners[0], corners[1], f, pa + f * (pb - pa), tol);
+  // On patch q, from corners c0 -> c1 (equal: the point of the section nearest the linear one).
+  auto refine_on = [&](PatchId q, Vec2d c0, Vec2d c1) {
+    Vec2d corners[2] = {c0, c1};
+    query::unwrap_corners(domains[q], corners, 2);
+    return query::refine_plane_edge(patches[q].surface, domains[q], normal, plane.on_plane(pa),
+                                    corners[0], corners[1], f, linear, tol);
+  };
+  const PatchId qa = m.vertex_patch[a], qb = m.vertex_patch[b];
+  if (qa == p && qb == p) {
+    used = p;
+    return refine_on(p, m.vertex_uv[a], m.vertex_uv[b]);
+  }
+  if (qa == p || qb == p) {
+    used = p;
+    const Vec2d& c = qa == p ? m.vertex_uv[a] : m.vertex_uv[b];
+    return refine_on(p, c, c);
+  }
+  // Neither corner names p: both lie on borders and are named by their other patches, whose
+  // sections may end before the crossing (their nearest point is then their border, far along
+  // the plane: on the generated 300-patch round-bilge hull at its waterline two crossings of
+  // one face came out at one point, and the face had no area). The start on p is the closest
+  // point of p to the linear crossing.
+  used = p;
+  const SurfaceProjection start = closest_point(patches[p].surface, linear);
+  const Vec2d c{start.u, start.v};
+  return refine_on(p, c, c);
 }
 
 }  // namespace

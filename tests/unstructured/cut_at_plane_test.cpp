@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/error.h"
@@ -118,6 +120,50 @@ TEST(CutAtPlane, SnappingLeavesNoSliverWhereTheLoopWouldMakeOne) {
   // a few slivers may remain there: the 3 borders between 4 patches cross the row once each, and
   // at most 4 triangles of such a vertex's fan cross the plane.
   EXPECT_LE(slivers, 12u) << "of " << raw_slivers << " without snapping";
+}
+
+// The generated 300-patch round-bilge hull at 10,000 triangles, cut at its draft. A face of
+// one patch whose corners both lie on borders, named by their other patches, had its crossing
+// refined on a neighbour whose section ends before it: it came out on that neighbour's border,
+// 0.12 m along the waterline, on the crossing of the face's other edge, and the face had no
+// area. Every crossing lies on its patch and near its edge, and no face is without area.
+TEST(CutAtPlane, CrossingsOfFacesBetweenBordersStayOnTheirEdges) {
+  HullSpec spec;
+  spec.kind = HullKind::kRoundBilge;
+  spec.patches = 300;
+  const GeneratedHull hull = generate_hull(spec);
+  TessellateOptions o;
+  o.edge_length = edge_length_for_triangles(hull.patches, 10000);
+  const Tessellation tess = tessellate(hull.patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(hull.patches, tess.mesh, {}, silent_progress());
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const Vec3d& p : merged.mesh.positions) lowest = std::min(lowest, p.z);
+  PlaneCutOptions co;
+  co.value = lowest + spec.draft;
+  const PlaneCut cut = cut_at_plane(hull.patches, merged.mesh, co);
+  const SurfaceMesh& m = cut.mesh;
+  EXPECT_EQ(cut.report.unconverged, 0u);
+  std::size_t on_plane = 0;
+  for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+    if (m.positions[v].z != co.value) continue;
+    ++on_plane;
+    const Vec3d s =
+        evaluate(hull.patches[m.vertex_patch[v]].surface, m.vertex_uv[v].x, m.vertex_uv[v].y);
+    EXPECT_NEAR(norm(s - m.positions[v]), 0, 1e-7) << "vertex " << v;
+  }
+  EXPECT_GT(on_plane, 50u);
+  std::size_t zero_area = 0;
+  for (const Face& f : m.faces) {
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      longest = std::max(longest, squared_norm(m.positions[f[(k + 1) % 3]] - m.positions[f[k]]));
+    }
+    zero_area += face_area(m.positions, f) <= 1e-6 * longest;
+  }
+  EXPECT_EQ(zero_area, 0u);
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(adj.nonmanifold_edges.empty());
+  EXPECT_EQ(adj.boundary_loops.size(), 1u);
 }
 
 TEST(CutAtPlane, WigleyWettedAreaAndVolumeMatchTheClosedForm) {
