@@ -11,6 +11,8 @@ namespace {
 
 // A path point turning by more than this (degrees) is kept as a node.
 constexpr double kCornerDeg = 40;
+// Resampled nodes nearer each other than this (metric units: panels) are one node.
+constexpr double kMinNode = 0.25;
 
 }  // namespace
 
@@ -54,6 +56,7 @@ std::vector<Index> loop_path(const std::vector<Index>& v, std::size_t ea, std::s
 // Resamples the polyline pts at about one panel per metric unit, keeping its corners; returns
 // the interior points (the two ends excluded).
 std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric) {
+  if (pts.size() < 2) return {};
   std::vector<std::size_t> keep{0};
   for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
     const Vec3d a = pts[i] - pts[i - 1], b = pts[i + 1] - pts[i];
@@ -78,7 +81,20 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
     }
     if (k + 2 < keep.size()) out.push_back(pts[keep[k + 1]]);
   }
-  return out;
+  // Nodes nearer than kMinNode to the node before are dropped, and the last when it is that near
+  // the path's end. Corners that close come of a boundary that doubles back on itself (npl's
+  // 3 mm keel bar meets its 1.5 mm waterline step at the stern: a spike of 0.3 mm, whose
+  // copies of one point made panels with no area) or of a step far below the panel size; a
+  // panel edge that short breaks the side-ratio rule wherever it is.
+  std::vector<Vec3d> kept;
+  Vec3d last = pts.front();
+  for (const Vec3d& p : out) {
+    if (metric.length(last, p) < kMinNode) continue;
+    kept.push_back(p);
+    last = p;
+  }
+  if (!kept.empty() && metric.length(kept.back(), pts.back()) < kMinNode) kept.pop_back();
+  return kept;
 }
 
 std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAdjacency& adj,

@@ -41,7 +41,8 @@ std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMes
                                     const Metric& metric);
 
 // Resamples the polyline pts at about one panel per metric unit, keeping its corners (turns over
-// 40 degrees); returns the interior points (the two ends excluded).
+// 40 degrees); returns the interior points (the two ends excluded), none nearer than a quarter
+// panel to the one before or to the last end.
 std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric);
 
 }  // namespace hm::structured
