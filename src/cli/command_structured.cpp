@@ -315,7 +315,7 @@ void register_structured(CLI::App& app, const GlobalOptions& global, Action& act
                   "Dihedral angle in degrees above which an edge may be a knuckle")
       ->check(CLI::Range(1.0, 179.0));
   cmd->add_option("--triangles", c->triangles,
-                  "Fine triangles of the internal surface (default 10 per panel, 20k to 1M)")
+                  "Fine triangles of the internal surface (default 5 per panel, 10k to 1M)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{50'000'000}));
   cmd->add_option("--units", c->units, "Force the file's unit (m, mm, cm, in, ft, km)")
       ->check(CLI::IsMember({"m", "mm", "cm", "in", "ft", "km"}));

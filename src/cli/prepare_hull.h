@@ -26,9 +26,9 @@
 namespace hm::cli {
 
 // Fine triangles of the structured mesher's internal surface for a panel target (the rows are
-// cut from it and refined on the NURBS): 10 per panel, within [20,000, 1,000,000].
+// cut from it and refined on the NURBS): 5 per panel, within [10,000, 1,000,000].
 inline std::size_t structured_fine_triangles(std::size_t panels) {
-  return std::clamp<std::size_t>(10 * panels, 20'000, 1'000'000);
+  return std::clamp<std::size_t>(5 * panels, 10'000, 1'000'000);
 }
 
 struct PrepareArgs {
