@@ -1,10 +1,13 @@
 // Cleanup after welding: faces that collapsed (a repeated corner, or no area) go, and so do the
 // vertices no face uses any more. Two faces on the same three vertices go too: back to back (a
 // zero-thickness double layer, as where the two halves of a hull meet in a corner triangle that
-// lies in the centre plane) both go; wound alike (a face given twice) one stays.
+// lies in the centre plane) both go; wound alike, one stays (a face given twice), unless the two
+// are such a layer with one patch still flipped (drop_alike_pairs).
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <functional>
+#include <span>
 #include <utility>
 
 #include "core/parallel.h"
@@ -26,6 +29,43 @@ void compact_faces(Work& w, std::span<const std::uint8_t> keep) {
   m.face_patch.resize(kept);
   w.face_old.resize(kept);
 }
+
+namespace {
+
+// Two faces on the same corners wound alike: a face given twice (one stays), or a double layer
+// whose patches do not agree yet, one of them flipped (both go). The second has an edge that no
+// other face uses: the corner triangle that two halves of a full hull both put in the centre
+// plane, where keel and stem meet (a full Wigley with every third patch flipped left an edge with
+// three faces there). Removing a face given twice would open a hole; removing this pair leaves
+// none.
+void drop_alike_pairs(const SurfaceMesh& m, std::span<const std::pair<Index, Index>> alike,
+                      std::vector<std::uint8_t>& keep) {
+  if (alike.empty()) return;
+  const auto key = [](Index u, Index v) {
+    return std::uint64_t{std::min(u, v)} << 32 | std::max(u, v);
+  };
+  std::vector<std::uint64_t> edges;  // every kept face's edges, repeated once per use
+  edges.reserve(3 * m.face_count());
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    if (!keep[f]) continue;
+    const Face& t = m.faces[f];
+    for (int c = 0; c < 3; ++c) edges.push_back(key(t[c], t[(c + 1) % 3]));
+  }
+  std::sort(edges.begin(), edges.end());
+  const auto uses = [&](Index u, Index v) {
+    const auto [lo, hi] = std::equal_range(edges.begin(), edges.end(), key(u, v));
+    return hi - lo;
+  };
+  for (const auto& [a, b] : alike) {
+    const Face& t = m.faces[a];
+    bool layer = false;
+    for (int c = 0; c < 3 && !layer; ++c) layer = uses(t[c], t[(c + 1) % 3]) == 2;
+    keep[b] = 0;
+    if (layer) keep[a] = 0;
+  }
+}
+
+}  // namespace
 
 std::size_t drop_degenerate(Work& w, double length) {
   SurfaceMesh& m = w.mesh;
@@ -54,17 +94,19 @@ std::size_t drop_degenerate(Work& w, double length) {
     const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
     return std::array<Index, 3>{t[k], t[(k + 1) % 3], t[(k + 2) % 3]};
   };
+  std::vector<std::pair<Index, Index>> alike;
   for (std::size_t i = 0; i + 1 < by_corners.size(); ++i) {
     if (by_corners[i].first != by_corners[i + 1].first) continue;
     if (i + 2 < by_corners.size() && by_corners[i + 2].first == by_corners[i].first) continue;
     const Index a = by_corners[i].second, b = by_corners[i + 1].second;
     if (rotated(a) == rotated(b)) {
-      keep[b] = 0;
+      alike.emplace_back(a, b);
     } else {
       keep[a] = keep[b] = 0;
     }
     ++i;
   }
+  drop_alike_pairs(m, alike, keep);
   const std::size_t before = m.face_count();
   compact_faces(w, keep);
   const std::size_t dropped = before - m.face_count();
