@@ -22,6 +22,10 @@ namespace {
 
 constexpr int kSnapNewton = 8;
 
+// A crossing refined from one corner (the nearest point of the section to the linear crossing)
+// farther than this fraction of its edge from the linear crossing has run off its patch.
+constexpr double kFarCrossing = 0.1;
+
 // The corners of the triangles of face f: one triangle, or the quad's 0-1-2 and 0-2-3.
 int face_triangles(const Face& f, std::array<std::array<Index, 3>, 2>& out) {
   out[0] = {f[0], f[1], f[2]};
@@ -131,25 +135,53 @@ query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
     return query::refine_plane_edge(patches[q].surface, domains[q], normal, plane.on_plane(pa),
                                     corners[0], corners[1], f, linear, tol);
   };
+  const auto far = [&](const query::RefinedPlanePoint& x) {
+    return !x.converged || norm(x.point - linear) > kFarCrossing * norm(pb - pa);
+  };
   const PatchId qa = m.vertex_patch[a], qb = m.vertex_patch[b];
-  if (qa == p && qb == p) {
-    used = p;
-    return refine_on(p, m.vertex_uv[a], m.vertex_uv[b]);
-  }
-  if (qa == p || qb == p) {
-    used = p;
-    const Vec2d& c = qa == p ? m.vertex_uv[a] : m.vertex_uv[b];
-    return refine_on(p, c, c);
-  }
-  // Neither corner names p: both lie on borders and are named by their other patches, whose
-  // sections may end before the crossing (their nearest point is then their border, far along
-  // the plane: on the generated 300-patch round-bilge hull at its waterline two crossings of
-  // one face came out at one point, and the face had no area). The start on p is the closest
-  // point of p to the linear crossing.
   used = p;
-  const SurfaceProjection start = closest_point(patches[p].surface, linear);
-  const Vec2d c{start.u, start.v};
-  return refine_on(p, c, c);
+  if (qa == p && qb == p) {
+    const query::RefinedPlanePoint r = refine_on(p, m.vertex_uv[a], m.vertex_uv[b]);
+    // Far only where a corner's (u, v) is not where it lies: a border vertex the snap moved
+    // across a gap keeps its patch's border (u, v), and the border's crossing can lie far along
+    // a plane the border runs nearly in (three crossings of a chine hull's waterline at one
+    // point, 0.1-0.3 m from their edges).
+    if (!far(r)) return r;
+  }
+  // Otherwise the nearest point of a section, which lies within the chord error of the linear
+  // crossing unless the section ends before it. The start on p is the corner that names it, or
+  // p's closest point to the linear crossing when neither does (both corners on borders, named
+  // by their other patches: on the generated 300-patch round-bilge hull at its waterline, a's
+  // patch put two crossings of one face at one point, and the face had no area).
+  Vec2d start;
+  if (qa == p || qb == p) {
+    start = qa == p ? m.vertex_uv[a] : m.vertex_uv[b];
+  } else {
+    const SurfaceProjection on_p = closest_point(patches[p].surface, linear);
+    start = {on_p.u, on_p.v};
+  }
+  query::RefinedPlanePoint best = refine_on(p, start, start);
+  if (!far(best)) return best;
+  // p ends before the crossing (where an overlap was cut away or a gap closed): the corners' own
+  // patches are tried, and the nearer point wins. When every section ends before it, the
+  // crossing lies in a gap the merge bridged; it stays on the bridging face, at the linear
+  // crossing, and counts as not refined (the nearest patch's (u, v) goes with it as a start).
+  const auto rank = [&](const query::RefinedPlanePoint& x) {
+    return std::pair{!x.converged, norm(x.point - linear)};
+  };
+  for (const auto& [q, c] : {std::pair{qa, m.vertex_uv[a]}, std::pair{qb, m.vertex_uv[b]}}) {
+    if (q == p) continue;
+    const query::RefinedPlanePoint r = refine_on(q, c, c);
+    if (rank(r) < rank(best)) {
+      best = r;
+      used = q;
+    }
+  }
+  if (far(best)) {
+    best.point = linear;
+    best.converged = false;
+  }
+  return best;
 }
 
 }  // namespace
