@@ -265,6 +265,16 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
       }
     });
   }
+  // A vertex within the refinement tolerance of the plane is on it. One left a hair off (a full
+  // hull's keel vertices at y = 1e-19 under the centre-plane cut, on lines none of whose edges
+  // cross) gave each crossing edge a new vertex where it already was: 661 faces with no area on
+  // a full hull with gaps.
+  parallel_for(0, nv, [&](std::size_t v) {
+    const double d = plane.side(m.positions[v]);
+    if (d == 0 || std::abs(d) > tol) return;
+    m.positions[v] = plane.on_plane(m.positions[v]);
+    snapped[v] = 1;
+  });
   auto side = [&](Index v) {
     const double d = plane.side(m.positions[v]);
     return d > 0 ? 1 : (d < 0 ? -1 : 0);

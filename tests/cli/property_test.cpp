@@ -34,6 +34,7 @@ struct Case {
   std::string generate;  // `hullmesh generate` words, output excluded
   double draft = 0;      // m, the floating draft the meshers are given
   int panels = 0;
+  bool overlap = false;  // patches overlap: the file's exact volume counts the overlaps twice
 };
 
 // Proportions within what ships have (L/B 4..12, B/T 2..4, freeboard up to 60% of T), 1 to 16
@@ -58,20 +59,26 @@ Case random_case(std::uint64_t seed) {
     << " --depth " << depth << " --patches " << 1 + pick(16) << " --seed " << seed;
   const bool full = pick(2) != 0;
   if (full) g << " --full";
-  // Not both: on a full hull with gaps, the centre-plane cut of the merged surface leaves
-  // zero-area slivers on y = 0 (issue 4; replay seed 1000 with the gap put back).
+  // Not both: a full hull with gaps keeps its keel seam open below the waterline (issue 4;
+  // replay seed 1000 with the gap put back: 18 free edges). Its zero-area slivers at the
+  // centre-plane cut are gone since 2026-12-04 (CutAtPlane.VerticesARoundOffFromThePlaneAreOnIt).
   if (!full && pick(3) == 0) g << " --gap " << 1e-4 * length;
-  // Overlapping patches are left out. Put `if (pick(3) == 0) g << " --overlap 0.05";` back here
-  // to see why (2026-12-04, 24 cases): the volume this test compares against, the patches'
-  // exact integrals, counts every overlap twice (seeds 1005, 1008, 1012, 1016, 1019: 5-10% off),
-  // and the merge and cut still leave zero-area faces: at the waterplane cut with a gap and an
-  // overlap (seed 1006), near the keel of a full hull (seed 1019), issue 4's open work. Seed
-  // 1005's non-manifold seam, noted here before, no longer happens (nor at e1ffc1c).
+  // Overlapping patches (5% of a patch). The displacement check below is skipped for them: the
+  // volume it compares against, the patches' exact integrals, counts every overlap twice (5-10%
+  // off). Left out until 2026-12-04, when the merge and cut still left zero-area faces and an
+  // edge with three faces on some of these hulls (now CutAtPlane.CrossingsInABridgedGap*,
+  // Merge.CentrePlaneCornerOfAFlippedHalf*). Of 32 cases (HM_PROPERTY_CASES=32), four full hulls
+  // still fail, issue 4's open work: 1019 (overlaps: a zero-area face at the cut), 1027 (a
+  // Wigley with overlaps: 20 free edges below the waterline), 1028 (no defect: a hole where
+  // the halves' bulb noses meet, 3 free edges) and 1029 (duplicate points: a coarsening fault).
+  const bool overlap = pick(3) == 0;
+  if (overlap) g << " --overlap 0.05";
   if (pick(3) == 0) g << " --duplicate-points";
   if (pick(3) == 0) g << " --flip-every " << 2 + pick(3);
   Case c;
   c.seed = seed;
   c.generate = g.str();
+  c.overlap = overlap;
   c.draft = draft * uniform(0.6, 1.1);
   c.panels = 300 + 100 * pick(10);
   return c;
@@ -109,7 +116,9 @@ void check_case(const Case& c, const fs::path& dir) {
     EXPECT_EQ(quality["free_edges_below_waterline"], 0) << mesher;
     // The panels hold the hull's displacement (against the exact NURBS integrals).
     const double volume_error = record["results"]["hydrostatics"]["volume_error"];
-    EXPECT_LT(std::abs(volume_error), 0.03) << mesher;  // 300 panels on L/B 12
+    if (!c.overlap) {
+      EXPECT_LT(std::abs(volume_error), 0.03) << mesher;  // 300 panels on L/B 12
+    }
     std::printf("seed %llu %s: %d panels, volume %+.3f%%%s\n",
                 static_cast<unsigned long long>(c.seed), mesher.c_str(),
                 quality["panels"].get<int>(), 100 * volume_error, shares.c_str());
