@@ -14,6 +14,7 @@
 #include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
 #include "quality/hydrostatics.h"
+#include "support/hull_spec.h"
 #include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/merge.h"
@@ -122,6 +123,19 @@ TEST(CutAtPlane, SnappingLeavesNoSliverWhereTheLoopWouldMakeOne) {
   EXPECT_LE(slivers, 12u) << "of " << raw_slivers << " without snapping";
 }
 
+// Faces whose area is at most 1e-6 of their longest side squared.
+std::size_t faces_without_area(const SurfaceMesh& m) {
+  std::size_t count = 0;
+  for (const Face& f : m.faces) {
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      longest = std::max(longest, squared_norm(m.positions[f[(k + 1) % 3]] - m.positions[f[k]]));
+    }
+    count += face_area(m.positions, f) <= 1e-6 * longest;
+  }
+  return count;
+}
+
 // Tessellates the patches at about `triangles`, merges them and cuts at `draft` above their
 // lowest point. Every vertex on the plane must lie on its patch (to 1 um) or count as not
 // refined (in a gap the merge bridged; at most max_unrefined), and no face may be left without
@@ -149,15 +163,7 @@ void expect_sound_waterline_cut(const std::vector<Patch>& patches, std::size_t t
   }
   EXPECT_GT(on_plane, 50u);
   EXPECT_EQ(on_patch + cut.report.unconverged, on_plane);
-  std::size_t zero_area = 0;
-  for (const Face& f : m.faces) {
-    double longest = 0;
-    for (int k = 0; k < 3; ++k) {
-      longest = std::max(longest, squared_norm(m.positions[f[(k + 1) % 3]] - m.positions[f[k]]));
-    }
-    zero_area += face_area(m.positions, f) <= 1e-6 * longest;
-  }
-  EXPECT_EQ(zero_area, 0u);
+  EXPECT_EQ(faces_without_area(m), 0u);
   const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
   EXPECT_TRUE(adj.nonmanifold_edges.empty());
   EXPECT_EQ(adj.boundary_loops.size(), 1u);
@@ -182,13 +188,7 @@ TEST(CutAtPlane, CrossingsOfFacesBetweenBordersStayOnTheirEdges) {
 // crossing that far from its edge is now sought on the corners' patches, and in a bridged gap
 // stays on the bridge (counted as not refined).
 TEST(CutAtPlane, CrossingsInABridgedGapStayOnTheirEdges) {
-  HullSpec spec;
-  spec.kind = HullKind::kChine;
-  spec.length = 168.811;
-  spec.beam = 14.3579;
-  spec.draft = 4.3493;
-  spec.depth = 6.04267;
-  spec.patches = 6;
+  HullSpec spec = test::hull_spec(HullKind::kChine, 168.811, 14.3579, 4.3493, 6.04267, 6);
   spec.defects.gap = 0.0168811;
   spec.defects.overlap = 0.05;
   spec.defects.seed = 1006;
@@ -311,14 +311,8 @@ TEST(CutAtPlane, CentrePlaneKeepsThePortHalfOfAFullHull) {
 // where the vertex already was: 661 faces with no area after the centre-plane cut. A vertex
 // within the refinement tolerance of the plane is now on it.
 TEST(CutAtPlane, VerticesARoundOffFromThePlaneAreOnIt) {
-  HullSpec spec;
-  spec.kind = HullKind::kRoundBilge;
-  spec.length = 62.833;
-  spec.beam = 5.29959;
-  spec.draft = 1.45248;
-  spec.depth = 1.9981;
-  spec.patches = 2;
-  spec.full_hull = true;
+  HullSpec spec =
+      test::hull_spec(HullKind::kRoundBilge, 62.833, 5.29959, 1.45248, 1.9981, 2, /*full=*/true);
   spec.defects.gap = 0.0062833;
   spec.defects.duplicate_points = true;
   spec.defects.seed = 1000;
@@ -336,15 +330,7 @@ TEST(CutAtPlane, VerticesARoundOffFromThePlaneAreOnIt) {
   co.keep_below = false;
   const PlaneCut cut = cut_at_plane(hull.patches, merged.mesh, co);
   const SurfaceMesh& m = cut.mesh;
-  std::size_t zero_area = 0;
-  for (const Face& f : m.faces) {
-    double longest = 0;
-    for (int k = 0; k < 3; ++k) {
-      longest = std::max(longest, squared_norm(m.positions[f[(k + 1) % 3]] - m.positions[f[k]]));
-    }
-    zero_area += face_area(m.positions, f) <= 1e-6 * longest;
-  }
-  EXPECT_EQ(zero_area, 0u);
+  EXPECT_EQ(faces_without_area(m), 0u);
   std::size_t still_off = 0;
   for (const Vec3d& p : m.positions) still_off += p.y != 0 && p.y < 1e-12;
   EXPECT_EQ(still_off, 0u);

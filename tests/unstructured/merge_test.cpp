@@ -17,6 +17,7 @@
 #include "iges/read_iges.h"
 #include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
+#include "support/hull_spec.h"
 #include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/features.h"
@@ -400,14 +401,9 @@ TEST(Merge, FoldedHoleIsSnappedAgainAndCloses) {
 // copies were wound alike, one stayed, and its diagonal had three faces. Both go now, as when
 // neither is flipped: the same surface comes out, turned.
 TEST(Merge, CentrePlaneCornerOfAFlippedHalfLeavesNoThirdFace) {
-  HullSpec spec;  // the property test's seed 1009 with overlaps on (2026-12-04)
-  spec.kind = HullKind::kWigley;
-  spec.length = 121.203;
-  spec.beam = 21.6683;
-  spec.draft = 7.37033;
-  spec.depth = 11.2088;
-  spec.patches = 4;
-  spec.full_hull = true;
+  // The property test's seed 1009 with overlaps on (2026-12-04).
+  HullSpec spec =
+      test::hull_spec(HullKind::kWigley, 121.203, 21.6683, 7.37033, 11.2088, 4, /*full=*/true);
   const Merged plain = merge_of(generate_hull(spec).patches);
   spec.defects.flip_every = 3;
   spec.defects.seed = 1009;
