@@ -33,11 +33,12 @@ void compact_faces(Work& w, std::span<const std::uint8_t> keep) {
 namespace {
 
 // Two faces on the same corners wound alike: a face given twice (one stays), or a double layer
-// whose patches do not agree yet, one of them flipped (both go). The second has an edge that no
-// other face uses: the corner triangle that two halves of a full hull both put in the centre
-// plane, where keel and stem meet (a full Wigley with every third patch flipped left an edge with
-// three faces there). Removing a face given twice would open a hole; removing this pair leaves
-// none.
+// whose patches do not agree yet, one of them flipped (both go). The second is a fin: its edges
+// have no other face except one, which has two (one from each side). It is the corner triangle
+// that two halves of a full hull both put in the centre plane, where keel and stem meet (a full
+// Wigley with every third patch flipped left an edge with three faces there). A face given twice
+// has one other face on an edge (or on the hull's outline, a corner, none on two), and removing
+// both copies would open a hole or a notch.
 void drop_alike_pairs(const SurfaceMesh& m, std::span<const std::pair<Index, Index>> alike,
                       std::vector<std::uint8_t>& keep) {
   if (alike.empty()) return;
@@ -58,10 +59,16 @@ void drop_alike_pairs(const SurfaceMesh& m, std::span<const std::pair<Index, Ind
   };
   for (const auto& [a, b] : alike) {
     const Face& t = m.faces[a];
-    bool layer = false;
-    for (int c = 0; c < 3 && !layer; ++c) layer = uses(t[c], t[(c + 1) % 3]) == 2;
+    // Without both, each edge of theirs must be left with no face or two (a fin: the two halves'
+    // faces meet along its third edge); without one, a face given twice leaves one or two.
+    bool fin = true, joined = false;
+    for (int c = 0; c < 3; ++c) {
+      const auto others = uses(t[c], t[(c + 1) % 3]) - 2;
+      fin = fin && (others == 0 || others == 2);
+      joined = joined || others == 2;
+    }
     keep[b] = 0;
-    if (layer) keep[a] = 0;
+    if (fin && joined) keep[a] = 0;
   }
 }
 

@@ -395,6 +395,25 @@ TEST(Merge, FoldedHoleIsSnappedAgainAndCloses) {
   EXPECT_GE(m.merged.report.snap_retries, 1u);
 }
 
+// A unit square of two triangles (patch 0) whose first triangle patch 1 gives again, wound alike:
+// a face given twice keeps one copy, even at a corner of the outline, where two of its edges
+// have no other face (dropping both would cut the corner off).
+TEST(MergeSteps, FaceGivenTwiceAtACornerKeepsOneCopy) {
+  merge::Work w;
+  SurfaceMesh& m = w.mesh;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.faces = {{0, 1, 2, kInvalid}, {0, 2, 3, kInvalid}, {1, 2, 0, kInvalid}};
+  m.face_patch = {0, 0, 1};
+  m.vertex_patch.assign(4, 0);
+  m.vertex_uv.assign(4, {});
+  w.face_old = {0, 1, 2};
+  w.vert_old = {0, 1, 2, 3};
+  EXPECT_EQ(merge::drop_degenerate(w, 1.0), 1u);
+  ASSERT_EQ(m.face_count(), 2u);
+  EXPECT_NEAR(total_area(m), 1.0, 1e-12);
+  EXPECT_EQ(m.vertex_count(), 4u);
+}
+
 // A full Wigley hull's two halves meet in the centre plane along keel and stem, and each half's
 // corner triangle there lies in that plane: the two are one face given twice, back to back, and
 // both go. With one half's patch flipped (not yet turned when the faces are cleaned up) the two
