@@ -88,10 +88,10 @@ bool split_across_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector
     const double l = norm(m.positions[r[(i + 1) % 3]] - m.positions[r[i]]);
     if (l > longest) longest = l, side = i;
   }
+  if (!(longest > 0)) return false;
   const Index a = r[side], c = r[(side + 1) % 3], b = r[(side + 2) % 3];
   const Vec3d ac = m.positions[c] - m.positions[a];
   const Vec3d ab = m.positions[b] - m.positions[a];
-  if (!(longest > 0)) return false;
   const double height = norm(cross(ac, ab)) / longest;
   const double t = dot(ab, ac) / (longest * longest);
   if (height > kFlatHole * longest || t < kFlatHoleEnd || t > 1 - kFlatHoleEnd) return false;
@@ -110,8 +110,7 @@ bool split_across_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector
   m.faces.push_back({b, q, d, kInvalid});
   m.face_patch.push_back(m.face_patch[f]);
   w.face_old.push_back(w.face_old[f]);
-  split[f] = 1;
-  split.push_back(1);
+  split[f] = 1;  // the new face is not in adj, so no later hole can name it
   return true;
 }
 

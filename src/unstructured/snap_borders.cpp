@@ -159,10 +159,11 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       nearest[p.b] = std::min(nearest[p.b], p.distance);
     }
     for (const ClosePair& p : close) {
-      const double cap =
-          std::min(kEndFraction * 2 * b.edge_length[p.a], kEndFraction * 2 * b.edge_length[p.b]);
       const bool mutual = p.distance <= nearest[p.a] && p.distance <= nearest[p.b];
-      const double limit = std::min({tol[p.a], tol[p.b], mutual ? tol[p.a] : cap});
+      const double cap = mutual
+                             ? std::numeric_limits<double>::infinity()
+                             : kEndFraction * 2 * std::min(b.edge_length[p.a], b.edge_length[p.b]);
+      const double limit = std::min({tol[p.a], tol[p.b], cap});
       // Coincident vertices weld whatever their inward directions: the two halves of a hull meet
       // at a fine stem or keel well inside the fold test's 60 degrees, and a fold does not put
       // two patches' vertices at the same point.
