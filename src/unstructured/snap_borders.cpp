@@ -40,6 +40,18 @@ struct Split {
 // whose two border runs lie close together, a patch lying on another), and stitching there
 // would make an edge with three faces.
 constexpr double kFoldCos = 0.5;
+// ... except where the vertex's own border runs along the other border edge (each of its own
+// border edges within about 25 degrees of it) and either lies on it, within this share of the
+// edge's length (its chord error), or lies across from it on its own side of a wedge: the two
+// patches' inward directions at least kWedgeMin apart, and the way from the edge to the vertex
+// within about 45 degrees of their difference. The two halves of a full hull meet so in the
+// centre plane at a fine stem, forefoot or bulb nose, well inside the fold test's 60 degrees:
+// their borders sampled at different points along one curve, or mirrored a gap apart. A fold
+// does neither: the overlaps are gone by now, and a patch lying on another has no wedge.
+constexpr double kOnEdgeShare = 0.05;
+constexpr double kAlongCos = 0.9;
+constexpr double kWedgeMin = 0.087;  // |difference of two unit vectors 5 degrees apart|
+constexpr double kAcrossCos = 0.7;
 
 // A border vertex moves at most this share of its own patch's width across a gap.
 constexpr double kWidthShare = 0.5;
@@ -76,9 +88,20 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
     double width = reach;
     Split best;
     best.distance = std::numeric_limits<double>::infinity();
+    // Other-patch edges refused by the fold test: kept apart until the vertex's own border
+    // edges are known (the grid gives edges in no set order).
+    Vec3d own[2];
+    int own_count = 0;
+    Split folded;
+    folded.distance = std::numeric_limits<double>::infinity();
     grid.for_each_near(p, reach, [&](Index e) {
       const BorderEdge& be = b.edges[e];
-      if (be.v0 == v || be.v1 == v) return;
+      if (be.v0 == v || be.v1 == v) {
+        if (be.patch == pv && own_count < 2) {
+          own[own_count++] = m.positions[be.v0 == v ? be.v1 : be.v0] - p;
+        }
+        return;
+      }
       if (be.patch == pv) {
         if (dot(edge_in[e], inward[i]) <= -kFoldCos) {
           width = std::min(width,
@@ -86,12 +109,28 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
         }
         return;
       }
-      if (dot(edge_in[e], inward[i]) > kFoldCos) return;
-      const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
-      if (sp.distance < best.distance || (sp.distance == best.distance && e < best.edge)) {
-        best = {e, sp.t, sp.distance};
+      const Vec3d& a = m.positions[be.v0];
+      const Vec3d& c = m.positions[be.v1];
+      const SegmentPoint sp = closest_on_segment(p, a, c);
+      Split& slot = dot(edge_in[e], inward[i]) > kFoldCos ? folded : best;
+      if (&slot == &folded && !(sp.distance <= kOnEdgeShare * norm(c - a))) {
+        const Vec3d wedge = inward[i] - edge_in[e];
+        const Vec3d across = p - (a + sp.t * (c - a));
+        const double w = norm(wedge);
+        if (!(w >= kWedgeMin && dot(across, wedge) >= kAcrossCos * norm(across) * w)) return;
+      }
+      if (sp.distance < slot.distance || (sp.distance == slot.distance && e < slot.edge)) {
+        slot = {e, sp.t, sp.distance};
       }
     });
+    if (folded.edge != kInvalid && folded.distance < best.distance && own_count == 2) {
+      const BorderEdge& fe = b.edges[folded.edge];
+      const Vec3d along = m.positions[fe.v1] - m.positions[fe.v0];
+      const auto runs_along = [&](const Vec3d& d) {
+        return std::abs(dot(d, along)) >= kAlongCos * norm(d) * norm(along);
+      };
+      if (runs_along(own[0]) && runs_along(own[1])) best = folded;
+    }
     tol[i] = std::min(tol[i], kWidthShare * width);
     if (best.edge != kInvalid && best.distance <= tol[i]) out[i] = best;
   });
@@ -168,10 +207,16 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       // at a fine stem or keel well inside the fold test's 60 degrees, and a fold does not put
       // two patches' vertices at the same point.
       const bool coincident = p.distance <= coincident_tol;
+      // So do two that are each other's nearest within the chord error of their edges: the two
+      // halves' borders mirrored a hair apart where the hull is a fin of no thickness (the
+      // forefoot of a round-bilge hull, the keel ends of a Wigley hull).
+      const bool touching =
+          mutual && p.distance <= kOnEdgeShare * std::min(b.edge_length[p.a], b.edge_length[p.b]);
       // Two patches on either side of a strip narrower than the tolerance: each vertex belongs
       // on the strip's border, not on the other's.
       if (!coincident && across_third_patch(p.a, p.b)) continue;
-      if (p.distance <= limit && (coincident || dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
+      if (p.distance <= limit &&
+          (coincident || touching || dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
         pairs.push_back(p);
       }
     }
