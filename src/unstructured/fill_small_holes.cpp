@@ -68,6 +68,25 @@ std::vector<Face> clip_ears(const SurfaceMesh& m, std::vector<Index> r, const Ve
   return out;
 }
 
+// Faces closing loop r by a fan from one of its vertices, the first none of whose diagonals is
+// an edge of the mesh already (is_edge); empty when there is none. The new faces run against
+// the loop.
+template <class IsEdge>
+std::vector<Face> fan_of_new_diagonals(const std::vector<Index>& r, IsEdge&& is_edge) {
+  const std::size_t k = r.size();
+  for (std::size_t s = 0; s < k; ++s) {
+    bool free = true;
+    for (std::size_t i = 2; i + 1 < k && free; ++i) free = !is_edge(r[s], r[(s + i) % k]);
+    if (!free) continue;
+    std::vector<Face> out;
+    for (std::size_t i = 1; i + 1 < k; ++i) {
+      out.push_back({r[s], r[(s + i + 1) % k], r[(s + i) % k], kInvalid});
+    }
+    return out;
+  }
+  return {};
+}
+
 // Heights of a three-vertex hole, over its longest side, at or below which it is flat: a vertex
 // that ended on (or within a hair of) the border edge across it, a T-junction the snap left. A
 // triangle there has no area; the face across that edge is split at the vertex instead.
@@ -209,6 +228,11 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
           add.push_back({r[0], r[i + 1], r[i], kInvalid});
       } else if (r.size() > 4) {
         add = clip_ears(m, r, up, is_edge);
+        // Where its two runs cross (each half's chords of a tight curve, sampled apart: the
+        // forefoot of a full hull at 40,000 triangles), its ears run out: a fan closes it, from
+        // the first vertex none of whose diagonals is an edge already. Its faces fold within
+        // the slit's width.
+        if (add.empty()) add = fan_of_new_diagonals(r, is_edge);
         if (add.empty()) {
           leave_open(r);
           continue;
