@@ -25,6 +25,9 @@ constexpr int kSnapNewton = 8;
 // A crossing refined from one corner (the nearest point of the section to the linear crossing)
 // farther than this fraction of its edge from the linear crossing has run off its patch.
 constexpr double kFarCrossing = 0.1;
+// A line lies in the cut plane where its vertices are within this share of their shortest edge
+// of it (see cut_at_plane).
+constexpr double kInPlane = 0.01;
 
 // The corners of the triangles of face f: one triangle, or the quad's 0-1-2 and 0-2-3.
 int face_triangles(const Face& f, std::array<std::array<Index, 3>, 2>& out) {
@@ -250,6 +253,31 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
       m.positions[v] = plane.on_plane(to[i].point);
       m.vertex_uv[v] = to[i].uv;
       snapped[v] = 1;
+    }
+    // A vertex of a line that runs in the plane, a hair off it, goes onto it: a full hull's keel
+    // under the centre-plane cut, where the weld averaged the two halves' keel vertices 0.2 mm
+    // to either side. Its crossing edges would otherwise all cross within a thousandth of their
+    // length of it, and two crossings of one face, refined onto the patch's border in the
+    // plane, met at one point (a face with no area). The line runs in the plane through the
+    // vertex when it and the other ends of two of its line edges lie within kInPlane of its
+    // shortest edge of the plane (a seam leaving the keel there moves as little).
+    {
+      std::vector<std::uint8_t> in_plane(nv, 0);  // line edges at v whose other end is close
+      const auto close = [&](Index v, double scale) {
+        return std::abs(plane.side(mesh.positions[v])) <= kInPlane * scale;
+      };
+      for (const auto& [a, b] : facts.line_edges) {
+        if (in_plane[a] < 2 && close(b, facts.shortest[a])) ++in_plane[a];
+        if (in_plane[b] < 2 && close(a, facts.shortest[b])) ++in_plane[b];
+      }
+      parallel_for(0, nv, [&](std::size_t v) {
+        if (snapped[v] || in_plane[v] < 2 || !near(Index(v)) ||
+            !close(Index(v), facts.shortest[v])) {
+          return;
+        }
+        m.positions[v] = plane.on_plane(m.positions[v]);
+        snapped[v] = 1;
+      });
     }
     // A vertex inside one smooth patch moves along it: each writes its own slot.
     parallel_for(0, nv, [&](std::size_t v) {
