@@ -336,6 +336,34 @@ TEST(CutAtPlane, VerticesARoundOffFromThePlaneAreOnIt) {
   EXPECT_EQ(still_off, 0u);
 }
 
+// The property test's old seed 1019: a full round-bilge hull with overlaps and flipped patches,
+// whose keel the weld left 0.2 mm off the centre plane, on the dropped side. Each face at the
+// keel had two edges crossing the plane within a thousandth of their length of one keel vertex,
+// and both crossings, refined onto the patch's border in the plane, met at one point: a face
+// with no area. The keel, a line running in the plane, is put on it first.
+TEST(CutAtPlane, ALineRunningInThePlaneAHairOffItIsOnIt) {
+  HullSpec spec =
+      test::hull_spec(HullKind::kRoundBilge, 62.1315, 5.19313, 1.36921, 1.72714, 12, /*full=*/true);
+  spec.defects.overlap = 0.05;
+  spec.defects.flip_every = 2;
+  spec.defects.seed = 1019;
+  std::vector<Patch> patches = generate_hull(spec).patches;
+  for (Patch& p : patches) p.reversed = false;  // as `hullmesh generate` writes them
+  TessellateOptions o;
+  o.edge_length = edge_length_for_triangles(patches, 10000);
+  const Tessellation tess = tessellate(patches, o, silent_progress());
+  const MergedSurface merged = merge_patches(patches, tess.mesh, {}, silent_progress());
+  std::size_t keel_off = 0;  // what the case is about
+  for (const Vec3d& p : merged.mesh.positions) keel_off += p.y < -1e-5 && p.y > -1e-3;
+  EXPECT_GT(keel_off, 0u);
+  PlaneCutOptions co;
+  co.axis = 1;
+  co.value = 0;
+  co.keep_below = false;
+  const PlaneCut cut = cut_at_plane(patches, merged.mesh, co);
+  EXPECT_EQ(faces_without_area(cut.mesh), 0u);
+}
+
 TEST(CutAtPlane, AButtockCutSplitsAlongTheYAxisAsTheWaterplaneDoesAlongZ) {
   HullSpec spec;
   spec.kind = HullKind::kRoundBilge;

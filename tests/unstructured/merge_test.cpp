@@ -384,6 +384,42 @@ TEST(MergeSteps, ThreeVertexHoleWithAreaGetsATriangle) {
   EXPECT_EQ(build_edge_adjacency(m.faces, m.vertex_count()).boundary_loops.size(), 1u);
 }
 
+// A slit of five vertices whose two runs cross: patch 0's run A-B-C-D (below, z = 0) and patch
+// 1's run D-E-A (above), E above B-C, so that D-E and E-A cross it. The two halves' borders meet
+// so along a tight forefoot curve, each sampled at its own points (the property test's seed 1063
+// at 40,000 triangles). No ear of it is left once the one at E is clipped; a fan closes it.
+TEST(MergeSteps, SlitWhoseRunsCrossIsClosedByAFan) {
+  merge::Work w;
+  SurfaceMesh& m = w.mesh;
+  m.positions = {{0, 0, 0},  {1, 0.2, 0}, {2, 0.2, 0}, {3, 0, 0},  {1.5, 0.25, 0},  // A..E
+                 {0, -1, 0}, {1, -1, 0},  {2, -1, 0},  {3, -1, 0},                  // below
+                 {0, 1, 0},  {1.5, 1, 0}, {3, 1, 0}};                               // above
+  const Index run[4] = {0, 1, 2, 3}, below[4] = {5, 6, 7, 8};
+  for (int i = 0; i < 3; ++i) {
+    m.faces.push_back({below[i], below[i + 1], run[i + 1], kInvalid});
+    m.faces.push_back({below[i], run[i + 1], run[i], kInvalid});
+    m.face_patch.insert(m.face_patch.end(), {0, 0});
+  }
+  m.faces.insert(
+      m.faces.end(),
+      {{0, 4, 10, kInvalid}, {0, 10, 9, kInvalid}, {4, 3, 11, kInvalid}, {4, 11, 10, kInvalid}});
+  m.face_patch.insert(m.face_patch.end(), {1, 1, 1, 1});
+  m.vertex_patch = {0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 1};
+  m.vertex_uv.assign(m.positions.size(), {});
+  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
+  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+  const std::size_t faces = m.face_count();
+  const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
+  std::vector<std::array<Index, 2>> left_open;
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 1u);
+  EXPECT_TRUE(left_open.empty());
+  EXPECT_EQ(m.face_count(), faces + 3);  // five vertices, three faces
+  const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
+  EXPECT_TRUE(after.nonmanifold_edges.empty());
+  EXPECT_TRUE(after.inconsistent_edges.empty());
+  EXPECT_EQ(after.boundary_loops.size(), 1u);  // the outline
+}
+
 // The generated 1,000-patch round-bilge hull at 40,000 triangles: two transom patches (995 and
 // 997) snapped so that a vertex of one lay inside a face of the other, which left a hole of four
 // vertices whose both diagonals were edges (0.61 m round, reported as a hole). The merge snaps
@@ -499,6 +535,55 @@ TEST(Merge, FullHullHalvesCloseAlongSharpEndsAndKeel) {
     EXPECT_NEAR(m.merged.mesh.positions[v].z, top, 1e-6) << "an open edge below the deck";
   }
   EXPECT_GT(m.merged.report.enclosed_volume, 0.0);
+}
+
+// The two halves of a full round-bilge hull meet in the centre plane along its forefoot, where
+// the halves lie well inside the snap's fold test of 60 degrees of each other, and each half's
+// border there is sampled at its own points along the same curve. A vertex of one run lies on
+// an edge of the other (3.8 mm off a 0.26 m chord): it must be split in, not refused as a fold
+// (the property test's seed 1028 left a hole 2.1 m round there, 3 free edges below its
+// waterline).
+TEST(Merge, HalvesSampledApartAlongAFineForefootMeetVertexToVertex) {
+  const HullSpec spec =
+      test::hull_spec(HullKind::kRoundBilge, 91.8418, 13.4708, 3.64385, 5.50769, 7, /*full=*/true);
+  const Merged m = merge_of(generate_hull(spec).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  // Snapped, not filled: a fan across the slit would fold its faces.
+  EXPECT_EQ(m.merged.report.holes_filled, 0u);
+  ASSERT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  double top = -1e300;
+  for (const Vec3d& p : m.merged.mesh.positions) top = std::max(top, p.z);
+  for (Index v : m.adj.boundary_loops[0].vertices) {
+    EXPECT_NEAR(m.merged.mesh.positions[v].z, top, 1e-6) << "an open edge below the deck";
+  }
+}
+
+// A full hull's halves a gap apart (the property test's 1e-4 L): where they meet at a fine stem
+// or forefoot their borders are mirrored across the gap, well inside the fold test's 60 degrees
+// of each other, and where the hull is a fin of no thickness (a round-bilge forefoot, a Wigley's
+// keel ends) they lie back to back a hair apart. Until 2026-12-04 (evening) the seam stayed
+// open there: 33 m of it on the round-bilge hull, 75 m on the Wigley.
+TEST(Merge, FullHullHalvesWithGapsCloseBelowTheDeck) {
+  for (HullKind kind : {HullKind::kWigley, HullKind::kRoundBilge, HullKind::kChine}) {
+    HullSpec spec;
+    spec.kind = kind;
+    spec.patches = 8;
+    spec.full_hull = true;
+    spec.defects.gap = 1e-4 * spec.length;
+    const Merged m = merge_of(generate_hull(spec).patches);
+    SCOPED_TRACE(to_string(kind));
+    EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+    EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+    double top = -1e300;
+    for (const Vec3d& p : m.merged.mesh.positions) top = std::max(top, p.z);
+    std::size_t below_deck = 0;
+    for (const BoundaryLoop& loop : m.adj.boundary_loops) {
+      for (Index v : loop.vertices) below_deck += m.merged.mesh.positions[v].z < top - 1e-6;
+    }
+    EXPECT_EQ(below_deck, 0u) << "open edges below the deck";
+    EXPECT_GT(m.merged.report.enclosed_volume, 0.0);
+  }
 }
 
 TEST(Merge, ClosesGapsOfOneThousandthOfTheLength) {
