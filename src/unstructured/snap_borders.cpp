@@ -40,14 +40,17 @@ struct Split {
 // whose two border runs lie close together, a patch lying on another), and stitching there
 // would make an edge with three faces.
 constexpr double kFoldCos = 0.5;
-// ... except where the vertex's own border runs along the other border edge (each of its own
-// border edges within about 25 degrees of it) and either lies on it, within this share of the
-// edge's length (its chord error), or lies across from it on its own side of a wedge: the two
-// patches' inward directions at least kWedgeMin apart, and the way from the edge to the vertex
-// within about 45 degrees of their difference. The two halves of a full hull meet so in the
-// centre plane at a fine stem, forefoot or bulb nose, well inside the fold test's 60 degrees:
-// their borders sampled at different points along one curve, or mirrored a gap apart. A fold
-// does neither: the overlaps are gone by now, and a patch lying on another has no wedge.
+// ... except where the two halves of a full hull meet in the centre plane (y = 0) at a fine
+// stem, forefoot or bulb nose, well inside 60 degrees of each other: the vertex lies within its
+// tolerance of the plane, the two patches leave it to either side (inward directions of
+// opposite y) at least kWedgeMin apart, its own border runs along the other border edge (each
+// of its own border edges within about 25 degrees of it), and it lies on that edge, within
+// kOnEdgeShare of the edge's length (its chord error: the halves' borders sampled at different
+// points of one curve), or across the wedge from it (the way from the edge to the vertex within
+// about 45 degrees of the inward directions' difference: the halves mirrored a gap apart).
+// Elsewhere a fold is no wedge: a remnant of an overlap the cut left, one patch's border lying
+// along another's 12 degrees apart on the same side (the generated 100-patch chine hull with
+// gaps and overlaps, at a chine), must not be stitched.
 constexpr double kOnEdgeShare = 0.05;
 constexpr double kAlongCos = 0.9;
 constexpr double kWedgeMin = 0.087;  // |difference of two unit vectors 5 degrees apart|
@@ -85,6 +88,7 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
     // The width matters up to tol / kWidthShare; the nearest other edge, once found within that,
     // is the nearest within any smaller tolerance too.
     const double reach = tol[i] / kWidthShare;
+    const double centre_reach = tol[i];  // of the centre plane, for the fold test's exceptions
     double width = reach;
     Split best;
     best.distance = std::numeric_limits<double>::infinity();
@@ -113,11 +117,16 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
       const Vec3d& c = m.positions[be.v1];
       const SegmentPoint sp = closest_on_segment(p, a, c);
       Split& slot = dot(edge_in[e], inward[i]) > kFoldCos ? folded : best;
-      if (&slot == &folded && !(sp.distance <= kOnEdgeShare * norm(c - a))) {
+      if (&slot == &folded) {
+        if (!(std::abs(p.y) <= centre_reach && inward[i].y * edge_in[e].y < 0)) return;
         const Vec3d wedge = inward[i] - edge_in[e];
-        const Vec3d across = p - (a + sp.t * (c - a));
         const double w = norm(wedge);
-        if (!(w >= kWedgeMin && dot(across, wedge) >= kAcrossCos * norm(across) * w)) return;
+        if (!(w >= kWedgeMin)) return;
+        const Vec3d across = p - (a + sp.t * (c - a));
+        if (!(sp.distance <= kOnEdgeShare * norm(c - a)) &&
+            !(dot(across, wedge) >= kAcrossCos * norm(across) * w)) {
+          return;
+        }
       }
       if (sp.distance < slot.distance || (sp.distance == slot.distance && e < slot.edge)) {
         slot = {e, sp.t, sp.distance};
@@ -207,11 +216,13 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       // at a fine stem or keel well inside the fold test's 60 degrees, and a fold does not put
       // two patches' vertices at the same point.
       const bool coincident = p.distance <= coincident_tol;
-      // So do two that are each other's nearest within the chord error of their edges: the two
-      // halves' borders mirrored a hair apart where the hull is a fin of no thickness (the
-      // forefoot of a round-bilge hull, the keel ends of a Wigley hull).
+      // So do two that are each other's nearest within the chord error of their edges, both
+      // within their tolerance of the centre plane: the two halves' borders mirrored a hair
+      // apart where the hull is a fin of no thickness (the forefoot of a round-bilge hull, the
+      // keel ends of a Wigley hull, the keel of a hull cut into 1,000 patches).
       const bool touching =
-          mutual && p.distance <= kOnEdgeShare * std::min(b.edge_length[p.a], b.edge_length[p.b]);
+          mutual && p.distance <= kOnEdgeShare * std::min(b.edge_length[p.a], b.edge_length[p.b]) &&
+          std::abs(points[p.a].y) <= tol[p.a] && std::abs(points[p.b].y) <= tol[p.b];
       // Two patches on either side of a strip narrower than the tolerance: each vertex belongs
       // on the strip's border, not on the other's.
       if (!coincident && across_third_patch(p.a, p.b)) continue;

@@ -586,6 +586,28 @@ TEST(Merge, FullHullHalvesWithGapsCloseBelowTheDeck) {
   }
 }
 
+// The fold test's exceptions for the two halves of a full hull hold in the centre plane only.
+// Elsewhere one patch's border can lie along another's, both on the same side, 12 degrees
+// apart, where the overlap cut left a remnant (the 100-patch chine hull with 0.1 m gaps and 5%
+// overlaps at 40,000 triangles, at x = 86.6 m on the chine): stitched, it left two holes.
+TEST(Merge, OverlapRemnantOffTheCentrePlaneIsNotStitchedAsAWedge) {
+  const std::vector<Patch> plain = generated(HullKind::kChine, 100).patches;
+  HullDefects d;
+  d.gap = 0.1;
+  d.overlap = 0.05;
+  const Merged m = merge_of(generated(HullKind::kChine, 100, d).patches,
+                            edge_length_for_triangles(plain, 40000));
+  expect_clean_half_hull(m, "chine, 100 patches, gaps and overlaps");
+}
+
+// The generated 1,000-patch chine hull at its default size (about 4 triangles a patch) left 20
+// gaps open along its keel in the centre plane, 33.7 m of hole, from 2026-12-02 until the
+// crossing-slit fan of 2026-12-04 (evening): slits whose two runs cross, where the ears ran out.
+TEST(Merge, ThousandPatchChineHullClosesAlongItsKeelAtTheDefaultSize) {
+  expect_clean_half_hull(merge_of(generated(HullKind::kChine, 1000).patches),
+                         "chine, 1000 patches");
+}
+
 TEST(Merge, ClosesGapsOfOneThousandthOfTheLength) {
   HullDefects d;
   d.gap = 0.1;  // 1e-3 L
