@@ -121,6 +121,10 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
           "faces or folded holes\n",
           r.snap_retries, r.snap_retries == 1 ? "" : "s");
     }
+    if (r.gap_vertices_widened > 0) {
+      std::printf("  tolerance widened to the gap measured at %zu border vertices (up to %.3g m)\n",
+                  r.gap_vertices_widened, r.widened_to);
+    }
     std::printf("  gaps left open: %zu", r.open_gaps.size());
     if (!r.open_gaps.empty()) {
       const OpenGap& gw = r.open_gaps.front();

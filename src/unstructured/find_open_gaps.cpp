@@ -57,8 +57,8 @@ bool straight_through(const SurfaceMesh& m, const Border& b, const VertexEdges& 
 
 }  // namespace
 
-std::vector<OpenGap> find_open_gaps(const Work& w, const EdgeAdjacency& adj,
-                                    const MergeOptions& options) {
+std::vector<OpenGapVertex> find_open_gap_vertices(const Work& w, const EdgeAdjacency& adj,
+                                                  const MergeOptions& options, double reach) {
   const SurfaceMesh& m = w.mesh;
   const Border b = collect_border(m, adj);
   const std::size_t nb = b.vertices.size();
@@ -74,47 +74,58 @@ std::vector<OpenGap> find_open_gaps(const Work& w, const EdgeAdjacency& adj,
   parallel_for(0, nb, [&](std::size_t i) {
     const Index v = b.vertices[i];
     const PatchId pv = m.vertex_patch[v];
-    grid.for_each_near(m.positions[v], options.gap_report_edges * b.edge_length[i], [&](Index e) {
-      const BorderEdge& be = b.edges[e];
-      if (be.patch == pv || be.v0 == v || be.v1 == v) return;
-      // A vertex beside an edge's end (beyond it, or a rounding error from it) faces that edge
-      // across a gap only where the border runs straight on through that end; at a corner it
-      // is a border running on past it (the next patch's deck edge, or a low deck edge meeting
-      // the end of a raised side). Beyond the end, it faces the next edge or nothing.
-      const double t = along(m.positions[v], m.positions[be.v0], m.positions[be.v1]);
-      if (t < -kEndT || t > 1 + kEndT) return;
-      if ((t <= kEndT || t >= 1 - kEndT) &&
-          !straight_through(m, b, at, t < 0.5 ? be.v0 : be.v1, e)) {
-        return;
-      }
-      const SegmentPoint sp =
-          closest_on_segment(m.positions[v], m.positions[be.v0], m.positions[be.v1]);
-      // Across a gap the vertex lies straight out from the edge, beyond its patch.
-      const Vec3d a = m.positions[be.v0], dir = m.positions[be.v1] - a;
-      const Vec3d off = m.positions[v] - (a + sp.t * dir);
-      const Vec3d in = edge_inward(m, be);
-      if (!(dot(off, in) < -0.7 * norm(off))) return;
-      const double d = sp.distance;
-      if (d < near[i].distance || (d == near[i].distance && be.patch < near[i].patch)) {
-        near[i] = {be.patch, d};
-      }
-    });
+    grid.for_each_near(
+        m.positions[v], std::max(reach, options.gap_report_edges * b.edge_length[i]), [&](Index e) {
+          const BorderEdge& be = b.edges[e];
+          if (be.patch == pv || be.v0 == v || be.v1 == v) return;
+          // A vertex beside an edge's end (beyond it, or a rounding error from it) faces that edge
+          // across a gap only where the border runs straight on through that end; at a corner it
+          // is a border running on past it (the next patch's deck edge, or a low deck edge meeting
+          // the end of a raised side). Beyond the end, it faces the next edge or nothing.
+          const double t = along(m.positions[v], m.positions[be.v0], m.positions[be.v1]);
+          if (t < -kEndT || t > 1 + kEndT) return;
+          if ((t <= kEndT || t >= 1 - kEndT) &&
+              !straight_through(m, b, at, t < 0.5 ? be.v0 : be.v1, e)) {
+            return;
+          }
+          const SegmentPoint sp =
+              closest_on_segment(m.positions[v], m.positions[be.v0], m.positions[be.v1]);
+          // Across a gap the vertex lies straight out from the edge, beyond its patch.
+          const Vec3d a = m.positions[be.v0], dir = m.positions[be.v1] - a;
+          const Vec3d off = m.positions[v] - (a + sp.t * dir);
+          const Vec3d in = edge_inward(m, be);
+          if (!(dot(off, in) < -0.7 * norm(off))) return;
+          const double d = sp.distance;
+          if (d < near[i].distance || (d == near[i].distance && be.patch < near[i].patch)) {
+            near[i] = {be.patch, d};
+          }
+        });
   });
-  std::map<std::pair<PatchId, PatchId>, OpenGap> gaps;
+  std::vector<OpenGapVertex> out;
   for (std::size_t i = 0; i < nb; ++i) {
     const Near& n = near[i];
     if (n.patch == kInvalid || n.distance <= tol[i] ||
-        n.distance > options.gap_report_edges * b.edge_length[i]) {
+        n.distance > std::max(reach, options.gap_report_edges * b.edge_length[i])) {
       continue;
     }
-    const PatchId pv = m.vertex_patch[b.vertices[i]];
-    OpenGap& g = gaps[{std::min(pv, n.patch), std::max(pv, n.patch)}];
-    g.patch_a = std::min(pv, n.patch);
-    g.patch_b = std::max(pv, n.patch);
+    out.push_back({b.vertices[i], n.patch, n.distance});
+  }
+  return out;
+}
+
+std::vector<OpenGap> find_open_gaps(const Work& w, const EdgeAdjacency& adj,
+                                    const MergeOptions& options) {
+  const SurfaceMesh& m = w.mesh;
+  std::map<std::pair<PatchId, PatchId>, OpenGap> gaps;
+  for (const OpenGapVertex& o : find_open_gap_vertices(w, adj, options)) {
+    const PatchId pv = m.vertex_patch[o.vertex];
+    OpenGap& g = gaps[{std::min(pv, o.across), std::max(pv, o.across)}];
+    g.patch_a = std::min(pv, o.across);
+    g.patch_b = std::max(pv, o.across);
     ++g.vertices;
-    if (n.distance > g.width) {
-      g.width = n.distance;
-      g.location = m.positions[b.vertices[i]];
+    if (o.width > g.width) {
+      g.width = o.width;
+      g.location = m.positions[o.vertex];
     }
   }
   std::vector<OpenGap> out;

@@ -1,6 +1,7 @@
 // merge_patches: the driver. Each step is its own file (see merge_steps.h).
 #include "unstructured/merge.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <optional>
@@ -69,9 +70,9 @@ std::size_t fill_holes(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& o
 // tolerance halved at the border vertices near it.
 merge::SnapStats close_seams(std::span<const Patch> patches, merge::Work& w,
                              const merge::Border& border, const MergeOptions& options,
-                             double length, MergeReport& r, EdgeAdjacency& adj) {
+                             double length, std::vector<double> scale, MergeReport& r,
+                             EdgeAdjacency& adj) {
   const merge::Work start = w;
-  std::vector<double> scale(border.vertices.size(), 1.0);
   std::vector<std::array<Index, 2>> trouble;
   // The best attempt so far, when a retry may have to be undone: fewest edges with three faces,
   // then fewest edges of holes left open. A retry for a fold must not make a non-manifold edge.
@@ -121,6 +122,57 @@ merge::SnapStats close_seams(std::span<const Patch> patches, merge::Work& w,
   }
 }
 
+// The default tolerance, half the local border edge, leaves open the gaps wider than that: on a
+// fine tessellation a gap of 1e-3 L is several border edges wide. One global floor wide enough
+// for them opened holes in clean hulls (ship_449, kcs, the generated 300- and 1,000-patch chine
+// hulls: 2026-12-04), so the gap width is measured where a gap stayed open instead: each border
+// vertex of an open gap (within gap_report_edges local border edges of another patch's border,
+// facing it) gets kWiden times that width as its tolerance, up to kWidestGap of the length, and
+// the snap runs again from the same start. The new attempt stands when it has fewer boundary
+// loops and no more edges with three faces; a merge with no open gap never runs it, so clean
+// hulls merge as before.
+constexpr double kWiden = 1.25;
+constexpr double kWidestGap = 2e-3;  // of the hull's length
+
+void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& before_snap,
+                        const merge::Border& border, const MergeOptions& options, double length,
+                        merge::Work& w, MergeReport& r, EdgeAdjacency& adj, merge::SnapStats& s) {
+  const std::vector<merge::OpenGapVertex> open =
+      merge::find_open_gap_vertices(w, adj, options, kWidestGap * length / kWiden);
+  if (open.empty()) return;
+  std::vector<double> scale(border.vertices.size(), 1.0);
+  std::size_t widened = 0;
+  double widest = 0;
+  for (const merge::OpenGapVertex& o : open) {
+    const auto it = std::lower_bound(border.vertices.begin(), border.vertices.end(), o.vertex);
+    if (it == border.vertices.end() || *it != o.vertex) continue;
+    const std::size_t i = std::size_t(it - border.vertices.begin());
+    const double base = merge::vertex_tolerance(options, border.edge_length[i]);
+    const double want = std::min(kWiden * o.width, kWidestGap * length);
+    if (!(base > 0) || !(want > base)) continue;
+    scale[i] = want / base;
+    ++widened;
+    widest = std::max(widest, want);
+  }
+  if (widened == 0) return;
+  merge::Work again = before_snap;
+  MergeReport ra = r;
+  ra.snap_retries = 0;  // of the attempt that stands
+  EdgeAdjacency adj_again;
+  const merge::SnapStats sa =
+      close_seams(patches, again, border, options, length, std::move(scale), ra, adj_again);
+  if (!(adj_again.boundary_loops.size() < adj.boundary_loops.size() &&
+        adj_again.nonmanifold_edges.size() <= adj.nonmanifold_edges.size())) {
+    return;
+  }
+  ra.gap_vertices_widened = widened;
+  ra.widened_to = widest;
+  w = std::move(again);
+  r = std::move(ra);
+  adj = std::move(adj_again);
+  s = sa;
+}
+
 }  // namespace
 
 MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& triangulation,
@@ -156,7 +208,12 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   if (progress.cancelled()) throw UsageError("merge cancelled");
   progress.update(0.4);
   EdgeAdjacency adj;  // of the oriented mesh
-  const merge::SnapStats s = close_seams(patches, w, border, options, length, r, adj);
+  const bool widen = options.gap_tolerance <= 0 && options.widen_to_gaps;
+  std::optional<merge::Work> before_snap;
+  if (widen) before_snap = w;
+  merge::SnapStats s = close_seams(patches, w, border, options, length,
+                                   std::vector<double>(border.vertices.size(), 1.0), r, adj);
+  if (widen) widen_to_open_gaps(patches, *before_snap, border, options, length, w, r, adj, s);
   r.vertices_welded = s.welded;
   r.tjunctions_split = s.split;
   r.gaps_closed = s.gaps_closed;

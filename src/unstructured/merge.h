@@ -30,6 +30,9 @@ struct MergeOptions {
   // Gaps wider than the tolerance but narrower than this many local border edge lengths are
   // reported as gaps; farther borders are taken for true boundaries (deck edge, centre plane).
   double gap_report_edges = 2;
+  // With the default tolerance: where a gap stays open, snap again with the tolerance widened
+  // to the gap measured there (see merge_patches).
+  bool widen_to_gaps = true;
 };
 
 // A stretch of two patch borders that stayed apart.
@@ -48,6 +51,10 @@ struct MergeReport {
   double widest_gap_closed = 0;      // metres
   // Times the snap ran again with a smaller tolerance near edges it had given three faces.
   std::size_t snap_retries = 0;
+  // Border vertices whose tolerance was widened to the gap measured there, and the widest
+  // tolerance given (metres; see merge_patches).
+  std::size_t gap_vertices_widened = 0;
+  double widened_to = 0;
   std::vector<OpenGap> open_gaps;  // sorted by width, widest first
   std::size_t overlap_triangles_removed = 0;
   double overlap_area_removed = 0;       // m^2

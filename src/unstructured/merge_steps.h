@@ -77,6 +77,18 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w, EdgeA
 // Volume enclosed by the mesh with every boundary loop closed by a fan from its centroid, m^3.
 double enclosed_volume(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
 
+// A border vertex of an open gap: the distance across to the nearest border edge of another
+// patch (metres), beyond its tolerance but within options.gap_report_edges local border edges
+// (or `reach` metres, when that is farther).
+struct OpenGapVertex {
+  Index vertex = kInvalid;  // mesh vertex
+  PatchId across = kInvalid;
+  double width = 0;
+};
+// Every such vertex, in ascending vertex order.
+std::vector<OpenGapVertex> find_open_gap_vertices(const Work& w, const EdgeAdjacency& adj,
+                                                  const MergeOptions& options, double reach = 0);
+
 // Border stretches of two patches that stay apart by more than the tolerance but less than
 // options.gap_report_edges local border edges, widest first.
 std::vector<OpenGap> find_open_gaps(const Work& w, const EdgeAdjacency& adj,
