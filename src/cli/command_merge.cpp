@@ -125,6 +125,9 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
       std::printf("  tolerance widened to the gap measured at %zu border vertices (up to %.3g m)\n",
                   r.gap_vertices_widened, r.widened_to);
     }
+    if (r.gaps_bridged > 0) {
+      std::printf("  gaps wider than the border edges zipped shut: %zu\n", r.gaps_bridged);
+    }
     std::printf("  gaps left open: %zu", r.open_gaps.size());
     if (!r.open_gaps.empty()) {
       const OpenGap& gw = r.open_gaps.front();

@@ -214,6 +214,14 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   merge::SnapStats s = close_seams(patches, w, border, options, length,
                                    std::vector<double>(border.vertices.size(), 1.0), r, adj);
   if (widen) widen_to_open_gaps(patches, *before_snap, border, options, length, w, r, adj, s);
+  // Gaps wider than the border edges on both sides stay open (no vertex of one border comes near
+  // the other's): thin loops along two patches. They are zipped shut up to the tolerance, or
+  // kWidestGap of the length by default.
+  if (options.bridge_gaps) {
+    r.gaps_bridged = merge::bridge_gaps(
+        w, adj, options.gap_tolerance > 0 ? options.gap_tolerance : kWidestGap * length);
+  }
+  if (r.gaps_bridged > 0) adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   r.vertices_welded = s.welded;
   r.tjunctions_split = s.split;
   r.gaps_closed = s.gaps_closed;

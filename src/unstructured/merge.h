@@ -33,6 +33,9 @@ struct MergeOptions {
   // With the default tolerance: where a gap stays open, snap again with the tolerance widened
   // to the gap measured there (see merge_patches).
   bool widen_to_gaps = true;
+  // Zip shut the thin loops along two or more patches that the snap left (gaps wider than the
+  // border edges), up to the tolerance (by default 2e-3 L).
+  bool bridge_gaps = true;
 };
 
 // A stretch of two patch borders that stayed apart.
@@ -55,6 +58,8 @@ struct MergeReport {
   // tolerance given (metres; see merge_patches).
   std::size_t gap_vertices_widened = 0;
   double widened_to = 0;
+  // Gaps still open after that, zipped shut as thin loops (see merge_patches).
+  std::size_t gaps_bridged = 0;
   std::vector<OpenGap> open_gaps;  // sorted by width, widest first
   std::size_t overlap_triangles_removed = 0;
   double overlap_area_removed = 0;       // m^2

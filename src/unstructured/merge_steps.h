@@ -64,6 +64,14 @@ SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& option
 std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
                              std::vector<std::array<Index, 2>>* left_open = nullptr);
 
+// Zips shut the boundary loops along two or more patches whose mean width (twice the area over
+// the perimeter) is at most `widest` metres: gaps wider than the border edges, which the snap
+// cannot close vertex to vertex. Each loop's two runs between its ends are joined by triangles
+// across the shorter next diagonal; a loop where a diagonal would be an edge already, or longer
+// than four times `widest`, is left. adj is the mesh's current adjacency. Returns the loops
+// closed. The new faces take the provenance of the loop's lowest-numbered face.
+std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest);
+
 // Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
 // number of faces dropped.
 std::size_t drop_degenerate(Work& w, double length);
