@@ -122,10 +122,8 @@ std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest) {
         const Index u = f[c], v = f[(c + 1) % 3];
         added.insert(std::uint64_t{std::min(u, v)} << 32 | std::max(u, v));
       }
-      m.faces.push_back(f);
-      m.face_patch.push_back(m.face_patch[first_face]);
-      w.face_old.push_back(w.face_old[first_face]);
     }
+    append_faces(w, add, first_face);
     ++bridged;
   }
   return bridged;

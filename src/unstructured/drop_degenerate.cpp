@@ -30,6 +30,15 @@ void compact_faces(Work& w, std::span<const std::uint8_t> keep) {
   w.face_old.resize(kept);
 }
 
+void append_faces(Work& w, std::span<const Face> faces, Index like) {
+  SurfaceMesh& m = w.mesh;
+  for (const Face& f : faces) {
+    m.faces.push_back(f);
+    m.face_patch.push_back(m.face_patch[like]);
+    w.face_old.push_back(w.face_old[like]);
+  }
+}
+
 namespace {
 
 // Two faces on the same corners wound alike: a face given twice (one stays), or a double layer

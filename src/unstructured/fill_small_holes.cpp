@@ -254,11 +254,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
           add.push_back({r[1], r[0], r[3], kInvalid});
         }
       }
-      for (const Face& f : add) {
-        m.faces.push_back(f);
-        m.face_patch.push_back(m.face_patch[first_face]);
-        w.face_old.push_back(w.face_old[first_face]);
-      }
+      append_faces(w, add, first_face);
       ++filled;
     }
   }

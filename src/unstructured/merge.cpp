@@ -126,9 +126,9 @@ merge::SnapStats close_seams(std::span<const Patch> patches, merge::Work& w,
 // fine tessellation a gap of 1e-3 L is several border edges wide. One global floor wide enough
 // for them opened holes in clean hulls (ship_449, kcs, the generated 300- and 1,000-patch chine
 // hulls: 2026-12-04), so the gap width is measured where a gap stayed open instead: each border
-// vertex of an open gap (within gap_report_edges local border edges of another patch's border,
-// facing it) gets kWiden times that width as its tolerance, up to kWidestGap of the length, and
-// the snap runs again from the same start. The new attempt stands when it has fewer boundary
+// vertex facing another patch's border across more than its tolerance (up to kWidestGap /
+// kWiden of the length away) gets kWiden times that width as its tolerance, and the snap runs
+// again from the same start. The new attempt stands when it has fewer boundary
 // loops and no more edges with three faces; a merge with no open gap never runs it, so clean
 // hulls merge as before.
 constexpr double kWiden = 1.25;

@@ -23,6 +23,8 @@ struct Work {
 
 // Keeps the faces with keep[f] != 0 (in order), with their patches and input triangles.
 void compact_faces(Work& w, std::span<const std::uint8_t> keep);
+// Appends faces that take the patch and input triangle of face `like` (faces closing a hole).
+void append_faces(Work& w, std::span<const Face> faces, Index like);
 
 // Per-vertex gap tolerance: options.gap_tolerance, or half the local border edge length.
 double vertex_tolerance(const MergeOptions& options, double border_edge_length);
