@@ -67,12 +67,13 @@ std::size_t fill_holes(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& o
 // transom patches of the generated 1,000-patch round-bilge hull at 40,000 triangles snap so that
 // one's vertex lies inside the other's face, which leaves a hole of four vertices whose both
 // diagonals are edges. Where either is found, all steps run again from the same start with the
-// tolerance halved at the border vertices near it.
-merge::SnapStats close_seams(std::span<const Patch> patches, merge::Work& w,
-                             const merge::Border& border, const MergeOptions& options,
-                             double length, std::vector<double> scale, MergeReport& r,
-                             EdgeAdjacency& adj) {
-  const merge::Work start = w;
+// tolerance halved at the border vertices near it. `start` is the mesh before the snap; `w` gets
+// the result.
+merge::SnapStats close_seams(std::span<const Patch> patches, const merge::Work& start,
+                             merge::Work& w, const merge::Border& border,
+                             const MergeOptions& options, double length, std::vector<double> scale,
+                             MergeReport& r, EdgeAdjacency& adj) {
+  w = start;
   std::vector<std::array<Index, 2>> trouble;
   // The best attempt so far, when a retry may have to be undone: fewest edges with three faces,
   // then fewest edges of holes left open. A retry for a fold must not make a non-manifold edge.
@@ -155,12 +156,12 @@ void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& befor
     widest = std::max(widest, want);
   }
   if (widened == 0) return;
-  merge::Work again = before_snap;
+  merge::Work again;
   MergeReport ra = r;
   ra.snap_retries = 0;  // of the attempt that stands
   EdgeAdjacency adj_again;
-  const merge::SnapStats sa =
-      close_seams(patches, again, border, options, length, std::move(scale), ra, adj_again);
+  const merge::SnapStats sa = close_seams(patches, before_snap, again, border, options, length,
+                                          std::move(scale), ra, adj_again);
   if (!(adj_again.boundary_loops.size() < adj.boundary_loops.size() &&
         adj_again.nonmanifold_edges.size() <= adj.nonmanifold_edges.size())) {
     return;
@@ -208,12 +209,13 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   if (progress.cancelled()) throw UsageError("merge cancelled");
   progress.update(0.4);
   EdgeAdjacency adj;  // of the oriented mesh
-  const bool widen = options.gap_tolerance <= 0 && options.widen_to_gaps;
-  std::optional<merge::Work> before_snap;
-  if (widen) before_snap = w;
-  merge::SnapStats s = close_seams(patches, w, border, options, length,
+  // The mesh before the snap, which every attempt starts from.
+  const merge::Work before_snap = std::move(w);
+  merge::SnapStats s = close_seams(patches, before_snap, w, border, options, length,
                                    std::vector<double>(border.vertices.size(), 1.0), r, adj);
-  if (widen) widen_to_open_gaps(patches, *before_snap, border, options, length, w, r, adj, s);
+  if (options.gap_tolerance <= 0 && options.widen_to_gaps) {
+    widen_to_open_gaps(patches, before_snap, border, options, length, w, r, adj, s);
+  }
   // Gaps wider than the border edges on both sides stay open (no vertex of one border comes near
   // the other's): thin loops along two patches. They are zipped shut up to the tolerance, or
   // kWidestGap of the length by default.

@@ -116,8 +116,8 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
       const Vec3d& a = m.positions[be.v0];
       const Vec3d& c = m.positions[be.v1];
       const SegmentPoint sp = closest_on_segment(p, a, c);
-      Split& slot = dot(edge_in[e], inward[i]) > kFoldCos ? folded : best;
-      if (&slot == &folded) {
+      const bool fold = dot(edge_in[e], inward[i]) > kFoldCos;
+      if (fold) {
         if (!(std::abs(p.y) <= centre_reach && inward[i].y * edge_in[e].y < 0)) return;
         const Vec3d wedge = inward[i] - edge_in[e];
         const double w = norm(wedge);
@@ -128,6 +128,7 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
           return;
         }
       }
+      Split& slot = fold ? folded : best;
       if (sp.distance < slot.distance || (sp.distance == slot.distance && e < slot.edge)) {
         slot = {e, sp.t, sp.distance};
       }
@@ -219,7 +220,7 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       // So do two that are each other's nearest within the chord error of their edges, both
       // within their tolerance of the centre plane: the two halves' borders mirrored a hair
       // apart where the hull is a fin of no thickness (the forefoot of a round-bilge hull, the
-      // keel ends of a Wigley hull, the keel of a hull cut into 1,000 patches).
+      // keel ends of a Wigley hull).
       const bool touching =
           mutual && p.distance <= kOnEdgeShare * std::min(b.edge_length[p.a], b.edge_length[p.b]) &&
           std::abs(points[p.a].y) <= tol[p.a] && std::abs(points[p.b].y) <= tol[p.b];
