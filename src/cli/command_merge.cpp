@@ -121,6 +121,10 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
           "faces or folded holes\n",
           r.snap_retries, r.snap_retries == 1 ? "" : "s");
     }
+    if (r.folded_faces_dropped > 0) {
+      std::printf("  overlap remnants lying on another patch across an edge dropped: %zu\n",
+                  r.folded_faces_dropped);
+    }
     if (r.gap_vertices_widened > 0) {
       std::printf("  tolerance widened to the gap measured at %zu border vertices (up to %.3g m)\n",
                   r.gap_vertices_widened, r.widened_to);

@@ -174,6 +174,23 @@ void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& befor
   s = sa;
 }
 
+// Edges with three faces that the retries left, where a face of one patch lies on another's
+// across the edge (drop_folded_faces): the remnant goes, and the small hole it leaves, if any, is
+// closed. Only a merge that would otherwise fail runs it, so every other comes out as before.
+void drop_folds(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& options, double length,
+                MergeReport& r) {
+  if (adj.nonmanifold_edges.empty()) return;
+  const merge::FoldStats folds = merge::drop_folded_faces(w, adj);
+  if (folds.faces == 0) return;
+  r.folded_faces_dropped = folds.faces;
+  r.overlap_triangles_removed += folds.faces;
+  r.overlap_area_removed += folds.area;
+  r.degenerate_faces_dropped += merge::drop_degenerate(w, length);  // and the unused vertices
+  adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  std::vector<std::array<Index, 2>> left_open;
+  r.holes_filled += fill_holes(w, adj, options, left_open);
+}
+
 }  // namespace
 
 MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& triangulation,
@@ -216,6 +233,7 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   if (options.gap_tolerance <= 0 && options.widen_to_gaps) {
     widen_to_open_gaps(patches, before_snap, border, options, length, w, r, adj, s);
   }
+  drop_folds(w, adj, options, length, r);
   // Gaps wider than the border edges on both sides stay open (no vertex of one border comes near
   // the other's): thin loops along two patches. They are zipped shut up to the tolerance, or
   // kWidestGap of the length by default.

@@ -65,6 +65,9 @@ struct MergeReport {
   double overlap_area_removed = 0;       // m^2
   std::vector<PatchId> patches_flipped;  // wound against their declared orientation, turned
   std::size_t degenerate_faces_dropped = 0;
+  // Faces of one patch the snap laid on another's across a shared edge (an edge with three
+  // faces), dropped as overlap remnants; their area is in overlap_area_removed.
+  std::size_t folded_faces_dropped = 0;
   std::size_t holes_filled = 0;  // corner holes of 3-4 vertices between patches, closed
   // The result's topology (from its edge adjacency).
   std::size_t boundary_loops = 0;

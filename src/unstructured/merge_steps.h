@@ -74,6 +74,17 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
 // closed. The new faces take the provenance of the loop's lowest-numbered face.
 std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest);
 
+struct FoldStats {
+  std::size_t faces = 0;
+  double area = 0;  // m^2
+};
+// Drops, on each edge with three faces or more, the face of a pair from different patches that
+// lie on each other (on the same side of the edge, within 20 degrees): an overlap remnant the
+// snap laid there. Of the two, the one with more boundary edges goes, then the higher-numbered
+// patch's. adj is the mesh's current adjacency. Vertices stay (drop_degenerate removes the
+// unused ones).
+FoldStats drop_folded_faces(Work& w, const EdgeAdjacency& adj);
+
 // Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
 // number of faces dropped.
 std::size_t drop_degenerate(Work& w, double length);

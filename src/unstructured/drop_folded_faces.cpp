@@ -1,0 +1,102 @@
+// Overlap remnants the cut left: the snap can lay a face of one patch on a face of another that
+// it shares an edge with, both on the same side of that edge (a sliver of the higher patch that
+// reached past the border of the lower one where several patch corners meet). The edge then has
+// three faces, and the retries with a smaller tolerance do not undo it, since the two faces
+// cover each other whatever the snap does. Of each such pair the remnant goes: the face with
+// more boundary edges (it lies at the border of the overlap), then the higher-numbered patch's
+// (the overlap rule: the lowest-numbered patch keeps what two cover).
+//
+// collect (faces on each edge with three faces or more) -> score (their directions away from the
+// edge, their boundary edges) -> select (one face of each pair folded onto each other) -> apply
+// (compact).
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "unstructured/merge_steps.h"
+
+namespace hm::merge {
+namespace {
+
+// Two faces on one edge lie on each other when their directions away from it, across the edge,
+// are within this angle.
+const double kFoldCos = std::cos(20.0 * 3.14159265358979323846 / 180.0);
+
+// The unit direction from the edge (u, v) to the face's third corner, perpendicular to the edge,
+// or zero when the face has no width there.
+Vec3d away_from_edge(const SurfaceMesh& m, const Face& t, Index u, Index v) {
+  Index w = kInvalid;
+  for (int c = 0; c < 3; ++c) {
+    if (t[c] != u && t[c] != v) w = t[c];
+  }
+  if (w == kInvalid) return {};
+  const Vec3d& a = m.positions[u];
+  const Vec3d e = m.positions[v] - a;
+  const double ee = dot(e, e);
+  if (!(ee > 0)) return {};
+  const Vec3d d = m.positions[w] - a;
+  const Vec3d across = d - (dot(d, e) / ee) * e;
+  const double n = norm(across);
+  return n > 0 ? across / n : Vec3d{};
+}
+
+}  // namespace
+
+FoldStats drop_folded_faces(Work& w, const EdgeAdjacency& adj) {
+  FoldStats stats;
+  if (adj.nonmanifold_edges.empty()) return stats;
+  const SurfaceMesh& m = w.mesh;
+  std::vector<std::uint8_t> nonmanifold(adj.edges.size(), 0), boundary(adj.edges.size(), 0);
+  for (Index e : adj.nonmanifold_edges) nonmanifold[e] = 1;
+  for (Index e : adj.boundary_edges) boundary[e] = 1;
+  // (edge, face) for every use of an edge with three faces or more; each face's boundary edges.
+  std::vector<std::pair<Index, Index>> uses;
+  std::vector<std::uint8_t> open_edges(m.face_count(), 0);
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const Index e = adj.slot_edge[4 * f + c];
+      if (e == kInvalid) continue;
+      if (nonmanifold[e]) uses.emplace_back(e, Index(f));
+      open_edges[f] += boundary[e];
+    }
+  }
+  std::sort(uses.begin(), uses.end());
+  std::vector<std::uint8_t> keep(m.face_count(), 1);
+  for (std::size_t lo = 0; lo < uses.size();) {
+    std::size_t hi = lo;
+    while (hi < uses.size() && uses[hi].first == uses[lo].first) ++hi;
+    const MeshEdge& edge = adj.edges[uses[lo].first];
+    std::vector<Index> faces;
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (keep[uses[i].second]) faces.push_back(uses[i].second);
+    }
+    std::vector<Vec3d> away(faces.size());
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      away[i] = away_from_edge(m, m.faces[faces[i]], edge.v0, edge.v1);
+    }
+    std::size_t left = faces.size();
+    for (std::size_t i = 0; i < faces.size() && left > 2; ++i) {
+      for (std::size_t j = i + 1; j < faces.size() && left > 2; ++j) {
+        const Index a = faces[i], b = faces[j];
+        if (!keep[a] || !keep[b] || m.face_patch[a] == m.face_patch[b]) continue;
+        if (!(dot(away[i], away[j]) >= kFoldCos)) continue;
+        // The remnant: more boundary edges, then the higher patch, then the later face.
+        const auto rank = [&](Index f) {
+          return std::make_tuple(open_edges[f], m.face_patch[f], f);
+        };
+        const Index drop = rank(a) > rank(b) ? a : b;
+        keep[drop] = 0;
+        --left;
+        ++stats.faces;
+        stats.area += face_area(m.positions, m.faces[drop]);
+      }
+    }
+    lo = hi;
+  }
+  if (stats.faces > 0) compact_faces(w, keep);
+  return stats;
+}
+
+}  // namespace hm::merge
