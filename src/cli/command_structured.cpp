@@ -201,6 +201,9 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
     if (r.wedges_collapsed > 0)
       std::printf("  wedge quads made triangles (a short side's ends merged): %zu\n",
                   r.wedges_collapsed);
+    if (r.non_convex_split > 0)
+      std::printf("  non-convex quads split along the diagonal through their reflex corner: %zu\n",
+                  r.non_convex_split);
     if (r.edge_snaps > 0)
       std::printf(
           "  %zu border and knuckle nodes moved onto their patch edge curves (exact NURBS)\n",

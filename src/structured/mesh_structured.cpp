@@ -137,7 +137,7 @@ void drop_unused_vertices(StructuredMesh& out) {
 }
 
 // One meshing pass at the given sizes: plan -> rows -> grow -> zip -> caps -> relax -> refine ->
-// repair border panels -> onto the edge curves -> orient.
+// repair border panels -> onto the edge curves -> wedges -> non-convex quads -> orient.
 StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surface,
                          const EdgeAdjacency& adjacency, const HullQuery& query,
                          const FeatureSet& features, const StructuredOptions& options,
@@ -192,6 +192,7 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
     rep.wedges_collapsed =
         collapse_wedges(slots, out.knuckle_edges, options.min_opposite_ratio, mesh);
   }
+  rep.non_convex_split = split_non_convex(mesh);
 
   drop_unused_vertices(out);
   // The blocks' panel counts, as the repairs left them (a block's id is its place in the list).

@@ -170,6 +170,12 @@ std::size_t collapse_wedges(std::span<const NodeSlot> slots,
                             std::span<const std::array<Index, 2>> knuckle_edges,
                             double min_opposite_ratio, SurfaceMesh& mesh);
 
+// Quads left with a reflex or flat corner become two triangles along the diagonal through it
+// (the split whose triangles both keep the quad's orientation). Nothing moves. Serial in face
+// order: the first triangle takes the quad's place, the second goes to the end with its block.
+// Returns the quads split.
+std::size_t split_non_convex(SurfaceMesh& mesh);
+
 // Boundary compliance on the exact curves: every node on the panel mesh's open border or on a
 // knuckle edge that lies on a fine boundary or knuckle segment running along an edge of a
 // patch's parameter domain moves onto that NURBS edge curve (a row node where the curve crosses
