@@ -54,6 +54,11 @@ constexpr double kFoldCos = 0.5;
 constexpr double kOnEdgeShare = 0.05;
 constexpr double kAlongCos = 0.9;
 constexpr double kWedgeMin = 0.087;  // |difference of two unit vectors 5 degrees apart|
+// ... or closer, where the vertex lies on the other edge's line (within this share of its
+// length): the halves' borders are one curve there, as where a Wigley's stern meets its keel
+// and the two halves close to nothing (the property test's seed 1121: its stern's two border
+// runs, left apart, were filled by faces with no area).
+constexpr double kOnLine = 1e-6;
 constexpr double kAcrossCos = 0.7;
 
 // A border vertex moves at most this share of its own patch's width across a gap.
@@ -121,7 +126,7 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
         if (!(std::abs(p.y) <= centre_reach && inward[i].y * edge_in[e].y < 0)) return;
         const Vec3d wedge = inward[i] - edge_in[e];
         const double w = norm(wedge);
-        if (!(w >= kWedgeMin)) return;
+        if (!(w >= kWedgeMin) && !(sp.distance <= kOnLine * norm(c - a))) return;
         const Vec3d across = p - (a + sp.t * (c - a));
         if (!(sp.distance <= kOnEdgeShare * norm(c - a)) &&
             !(dot(across, wedge) >= kAcrossCos * norm(across) * w)) {
