@@ -187,6 +187,34 @@ query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
   return best;
 }
 
+// For each new vertex first_new + i, the vertex it is: the lowest-numbered vertex within `tol`
+// of it among the new ones and those in the plane (side 0). Sorted by x and swept, so the work is
+// the number of new vertices times the few that share an x within tol.
+template <class Side>
+std::vector<Index> coincident_crossings(std::span<const Vec3d> positions, Index first_new,
+                                        double tol, const Side& side) {
+  std::vector<Index> points;
+  for (Index v = 0; v < Index(positions.size()); ++v) {
+    if (v >= first_new || side(v) == 0) points.push_back(v);
+  }
+  std::sort(points.begin(), points.end(), [&](Index a, Index b) {
+    return positions[a].x != positions[b].x ? positions[a].x < positions[b].x : a < b;
+  });
+  std::vector<Index> to(positions.size() - first_new);
+  for (std::size_t i = 0; i < to.size(); ++i) to[i] = first_new + Index(i);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t j = i + 1;
+         j < points.size() && positions[points[j]].x - positions[points[i]].x <= tol; ++j) {
+      const Index a = std::min(points[i], points[j]), b = std::max(points[i], points[j]);
+      if (b < first_new || !(norm(positions[a] - positions[b]) <= tol)) continue;
+      // b is new; it becomes what a is (a's own target when a is new too and already taken).
+      const Index target = a >= first_new ? to[a - first_new] : a;
+      to[b - first_new] = std::min(to[b - first_new], target);
+    }
+  }
+  return to;
+}
+
 }  // namespace
 
 PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
@@ -346,12 +374,18 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
     m.vertex_uv[first_new + e] = r.uv;
     m.vertex_patch[first_new + e] = used;
   });
+  // Crossings refined to one point are one vertex: two edges of a face that leave their patch
+  // at its corner in the plane, or a crossing that lands on a vertex already there, would
+  // otherwise give a face with no area between them (a full round-bilge hull's keel under the
+  // centre-plane cut, the property test's seed 1107). Each new vertex takes the lowest index at
+  // its point; the vertices already in the mesh keep theirs.
+  const std::vector<Index> same_point = coincident_crossings(m.positions, first_new, tol, side);
   auto cut_vertex = [&](Index a, Index b) {
     const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
     const auto it =
         std::lower_bound(cut_edges.begin(), cut_edges.end(), key,
                          [](const auto& entry, std::uint64_t k) { return entry.first < k; });
-    return first_new + static_cast<Index>(it - cut_edges.begin());
+    return same_point[it - cut_edges.begin()];
   };
 
   // Split: in face order, each input face gives its kept triangles in a fixed order.
@@ -399,11 +433,16 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
         // It has 3 or 4 corners, in the triangle's winding.
         Index poly[4];
         int count = 0;
+        const auto add = [&](Index v) {
+          if (count == 0 || poly[count - 1] != v) poly[count++] = v;
+        };
         for (int k = 0; k < 3; ++k) {
           const int k1 = (k + 1) % 3;
-          if (s[k] * keep >= 0) poly[count++] = c[k];
-          if (s[k] * s[k1] < 0) poly[count++] = cut_vertex(c[k], c[k1]);
+          if (s[k] * keep >= 0) add(c[k]);
+          if (s[k] * s[k1] < 0) add(cut_vertex(c[k], c[k1]));
         }
+        if (count > 1 && poly[count - 1] == poly[0]) --count;
+        if (count < 3) continue;  // its crossings met at one point: no area
         if (count == 3) {
           emit(f, poly[0], poly[1], poly[2]);
         } else {

@@ -364,6 +364,36 @@ TEST(CutAtPlane, ALineRunningInThePlaneAHairOffItIsOnIt) {
   EXPECT_EQ(faces_without_area(cut.mesh), 0u);
 }
 
+// The property test's seed 1107 (of 160): a full round-bilge hull, 81.9 m, with overlaps and every
+// third patch flipped. Under the centre-plane cut two edges of a face at its keel crossed the
+// plane and were both refined to one point, where their patch's border meets the plane: the kept
+// triangle between them had no area (2 of them, at x = 22.9 and 46.3 m). Crossings refined to
+// one point are now one vertex, and the face between them goes.
+TEST(CutAtPlane, CrossingsRefinedToOnePointAreOneVertex) {
+  for (std::size_t triangles : {10000u, 20000u, 40000u}) {
+    SCOPED_TRACE(triangles);
+    HullSpec spec = test::hull_spec(HullKind::kRoundBilge, 81.9198, 7.61257, 2.52026, 3.16897, 16,
+                                    /*full=*/true);
+    spec.defects.overlap = 0.05;
+    spec.defects.flip_every = 3;
+    spec.defects.seed = 1107;
+    std::vector<Patch> patches = generate_hull(spec).patches;
+    for (Patch& p : patches) p.reversed = false;  // as `hullmesh generate` writes them
+    TessellateOptions o;
+    o.edge_length = edge_length_for_triangles(patches, triangles);
+    const Tessellation tess = tessellate(patches, o, silent_progress());
+    const MergedSurface merged = merge_patches(patches, tess.mesh, {}, silent_progress());
+    PlaneCutOptions co;
+    co.axis = 1;
+    co.value = 0;
+    co.keep_below = false;
+    const PlaneCut cut = cut_at_plane(patches, merged.mesh, co);
+    EXPECT_EQ(faces_without_area(cut.mesh), 0u);
+    const EdgeAdjacency adj = build_edge_adjacency(cut.mesh.faces, cut.mesh.vertex_count());
+    EXPECT_TRUE(adj.nonmanifold_edges.empty());
+  }
+}
+
 TEST(CutAtPlane, AButtockCutSplitsAlongTheYAxisAsTheWaterplaneDoesAlongZ) {
   HullSpec spec;
   spec.kind = HullKind::kRoundBilge;
