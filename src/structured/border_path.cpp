@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace hm::structured {
@@ -13,6 +14,10 @@ namespace {
 constexpr double kCornerDeg = 40;
 // Resampled nodes nearer each other than this (metric units: panels) are one node.
 constexpr double kMinNode = 0.25;
+// ... except a corner that far or farther off the chord that would replace it, or the last
+// corner before the path's end down to kMinCorner from it (see resample).
+constexpr double kMinDepth = 0.1;
+constexpr double kMinCorner = 0.05;
 
 }  // namespace
 
@@ -66,6 +71,7 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
   }
   keep.push_back(pts.size() - 1);
   std::vector<Vec3d> out;
+  std::vector<std::uint8_t> corner;  // per out point: a kept corner of pts
   for (std::size_t k = 0; k + 1 < keep.size(); ++k) {
     std::vector<double> s{0};
     for (std::size_t i = keep[k] + 1; i <= keep[k + 1]; ++i)
@@ -78,22 +84,47 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
       const double len = s[i + 1] - s[i];
       const double f = len > 0 ? (t - s[i]) / len : 0;
       out.push_back(pts[keep[k] + i] * (1 - f) + pts[keep[k] + i + 1] * f);
+      corner.push_back(0);
     }
-    if (k + 2 < keep.size()) out.push_back(pts[keep[k + 1]]);
+    if (k + 2 < keep.size()) {
+      out.push_back(pts[keep[k + 1]]);
+      corner.push_back(1);
+    }
   }
   // Nodes nearer than kMinNode to the node before are dropped, and the last when it is that near
   // the path's end. Corners that close come of a boundary that doubles back on itself (npl's
   // 3 mm keel bar meets its 1.5 mm waterline step at the stern: a spike of 0.3 mm, whose
   // copies of one point made panels with no area) or of a step far below the panel size; a
-  // panel edge that short breaks the side-ratio rule wherever it is.
+  // panel edge that short breaks the side-ratio rule wherever it is. A corner stays, though,
+  // when the chord that would replace it passes kMinDepth or more from it (the surface beyond
+  // the chord would be left uncovered: a transom's immersed corner a fifth of a panel deep, the
+  // property test's seed 1102), and so does the last node when it is a corner farther than
+  // kMinCorner from the end (the stem meeting the waterline a seventh of a panel from the last
+  // station's upper end, seeds 1091 and 1134). Both left free edges below the waterline. A
+  // short edge breaks a share rule; a hole breaks a hard one.
   std::vector<Vec3d> kept;
+  std::vector<std::uint8_t> kept_corner;
   Vec3d last = pts.front();
-  for (const Vec3d& p : out) {
-    if (metric.length(last, p) < kMinNode) continue;
+  // How far out[i] lies from the chord that would replace it, from the last node kept to the
+  // next point (metric units).
+  const auto off_chord = [&](std::size_t i) {
+    const Vec3d& q = i + 1 < out.size() ? out[i + 1] : pts.back();
+    const Vec3d d = q - last;
+    const double dd = squared_norm(d);
+    const double t = dd > 0 ? std::clamp(dot(out[i] - last, d) / dd, 0.0, 1.0) : 0.0;
+    return metric.length(out[i], last + t * d);
+  };
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const Vec3d& p = out[i];
+    if (metric.length(last, p) < kMinNode && !(corner[i] && off_chord(i) >= kMinDepth)) continue;
     kept.push_back(p);
+    kept_corner.push_back(corner[i]);
     last = p;
   }
-  if (!kept.empty() && metric.length(kept.back(), pts.back()) < kMinNode) kept.pop_back();
+  if (!kept.empty() && metric.length(kept.back(), pts.back()) < kMinNode &&
+      !(kept_corner.back() && metric.length(kept.back(), pts.back()) >= kMinCorner)) {
+    kept.pop_back();
+  }
   return kept;
 }
 
