@@ -89,14 +89,14 @@ std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest) {
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
     std::set<PatchId> patches;
-    Index first_face = kInvalid;
+    std::vector<Index> around;  // the faces along the loop
     Vec3d centroid{0, 0, 0};
     for (Index v : r) centroid += m.positions[v] / double(r.size());
     double perimeter = 0, area2 = 0;
     for (std::size_t i = 0; i < r.size(); ++i) {
       const Index f = adj.edges[loop.edges[i]].first_slot / 4;
       patches.insert(m.face_patch[f]);
-      first_face = std::min(first_face, f);
+      around.push_back(f);
       const Vec3d& p = m.positions[r[i]];
       const Vec3d& q = m.positions[r[(i + 1) % r.size()]];
       perimeter += norm(q - p);
@@ -123,7 +123,7 @@ std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest) {
         added.insert(std::uint64_t{std::min(u, v)} << 32 | std::max(u, v));
       }
     }
-    append_faces(w, add, first_face);
+    append_faces(w, add, around);
     ++bridged;
   }
   return bridged;

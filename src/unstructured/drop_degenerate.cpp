@@ -30,9 +30,22 @@ void compact_faces(Work& w, std::span<const std::uint8_t> keep) {
   w.face_old.resize(kept);
 }
 
-void append_faces(Work& w, std::span<const Face> faces, Index like) {
+void append_faces(Work& w, std::span<const Face> faces, std::span<const Index> around) {
   SurfaceMesh& m = w.mesh;
   for (const Face& f : faces) {
+    // The face along the hole that lies most nearly in the new face's plane (the first of
+    // equals, in the order given): a face that closes a hole at a chine lies on the patch on
+    // its own side of it, and a knuckle found between two faces of one patch is not confirmed.
+    const Vec3d n = face_normal(m.positions, f);
+    Index like = around.front();
+    double best = -2;
+    for (Index g : around) {
+      const double agree = dot(n, face_normal(m.positions, m.faces[g]));
+      if (agree > best) {
+        best = agree;
+        like = g;
+      }
+    }
     m.faces.push_back(f);
     m.face_patch.push_back(m.face_patch[like]);
     w.face_old.push_back(w.face_old[like]);

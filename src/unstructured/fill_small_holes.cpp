@@ -184,7 +184,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
     for (const auto& [r, edges] : cycles_of(loop)) {
       if (r.size() < 3 || r.size() > kMaxHoleVertices) continue;
       std::set<PatchId> patches;
-      Index first_face = kInvalid;
+      std::vector<Index> around;  // the faces along the hole
       double perimeter = 0, local = 0, tolerance = 0;
       Vec3d centroid{0, 0, 0};
       for (Index v : r) centroid += m.positions[v] / double(r.size());
@@ -194,7 +194,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
         const Index f = adj.edges[edges[i]].first_slot / 4;
         patches.insert(m.face_patch[f]);
         up += face_normal(m.positions, m.faces[f]);
-        first_face = std::min(first_face, f);
+        around.push_back(f);
         const Vec3d& p = m.positions[r[i]];
         const Vec3d& q = m.positions[r[(i + 1) % r.size()]];
         const double edge = norm(q - p);
@@ -254,7 +254,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
           add.push_back({r[1], r[0], r[3], kInvalid});
         }
       }
-      append_faces(w, add, first_face);
+      append_faces(w, add, around);
       ++filled;
     }
   }

@@ -23,8 +23,9 @@ struct Work {
 
 // Keeps the faces with keep[f] != 0 (in order), with their patches and input triangles.
 void compact_faces(Work& w, std::span<const std::uint8_t> keep);
-// Appends faces that take the patch and input triangle of face `like` (faces closing a hole).
-void append_faces(Work& w, std::span<const Face> faces, Index like);
+// Appends faces closing a hole. Each takes the patch and input triangle of the face of `around`
+// (the faces along the hole, not empty) whose plane it lies most nearly in.
+void append_faces(Work& w, std::span<const Face> faces, std::span<const Index> around);
 
 // Per-vertex gap tolerance: options.gap_tolerance, or half the local border edge length.
 double vertex_tolerance(const MergeOptions& options, double border_edge_length);
@@ -60,9 +61,9 @@ SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& option
 // pairwise zipping leaves where several patch corners meet), and, up to 16 vertices, pinholes
 // smaller than the faces around them and slits no wider on average than the gap tolerance. adj is
 // the mesh's current adjacency. Returns the holes filled (when none, adj is still current). The new
-// faces take the provenance of the loop's lowest-numbered face. left_open, when given, gets the
-// edges (vertex pairs) of the holes it would close but cannot: a hole of four vertices whose both
-// diagonals are edges already, a slit with no ear free to clip. Both are folds the snap made.
+// faces take the provenance of a face along the loop (append_faces). left_open, when given, gets
+// the edges (vertex pairs) of the holes it would close but cannot: a hole of four vertices whose
+// both diagonals are edges already, a slit with no ear free to clip. Both are folds the snap made.
 std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
                              std::vector<std::array<Index, 2>>* left_open = nullptr);
 
@@ -71,7 +72,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
 // cannot close vertex to vertex. Each loop's two runs between its ends are joined by triangles
 // across the shorter next diagonal; a loop where a diagonal would be an edge already, or longer
 // than four times `widest`, is left. adj is the mesh's current adjacency. Returns the loops
-// closed. The new faces take the provenance of the loop's lowest-numbered face.
+// closed. The new faces take the provenance of a face along the loop (append_faces).
 std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest);
 
 struct FoldStats {
