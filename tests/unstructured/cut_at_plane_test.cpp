@@ -336,6 +336,29 @@ TEST(CutAtPlane, VerticesARoundOffFromThePlaneAreOnIt) {
   EXPECT_EQ(still_off, 0u);
 }
 
+// A generated full hull with defects, as `hullmesh generate` writes it (a bare type 128 has no
+// flag to say it is reversed), tessellated to about `triangles`, merged, and cut at y = 0
+// keeping the port half.
+struct FullHullCut {
+  MergedSurface merged;
+  PlaneCut cut;
+};
+FullHullCut centre_cut_of_merged(const HullSpec& spec, std::size_t triangles) {
+  std::vector<Patch> patches = generate_hull(spec).patches;
+  for (Patch& p : patches) p.reversed = false;
+  TessellateOptions o;
+  o.edge_length = edge_length_for_triangles(patches, triangles);
+  const Tessellation tess = tessellate(patches, o, silent_progress());
+  FullHullCut out;
+  out.merged = merge_patches(patches, tess.mesh, {}, silent_progress());
+  PlaneCutOptions co;
+  co.axis = 1;
+  co.value = 0;
+  co.keep_below = false;
+  out.cut = cut_at_plane(patches, out.merged.mesh, co);
+  return out;
+}
+
 // The property test's old seed 1019: a full round-bilge hull with overlaps and flipped patches,
 // whose keel the weld left 0.2 mm off the centre plane, on the dropped side. Each face at the
 // keel had two edges crossing the plane within a thousandth of their length of one keel vertex,
@@ -347,21 +370,11 @@ TEST(CutAtPlane, ALineRunningInThePlaneAHairOffItIsOnIt) {
   spec.defects.overlap = 0.05;
   spec.defects.flip_every = 2;
   spec.defects.seed = 1019;
-  std::vector<Patch> patches = generate_hull(spec).patches;
-  for (Patch& p : patches) p.reversed = false;  // as `hullmesh generate` writes them
-  TessellateOptions o;
-  o.edge_length = edge_length_for_triangles(patches, 10000);
-  const Tessellation tess = tessellate(patches, o, silent_progress());
-  const MergedSurface merged = merge_patches(patches, tess.mesh, {}, silent_progress());
+  const FullHullCut c = centre_cut_of_merged(spec, 10000);
   std::size_t keel_off = 0;  // what the case is about
-  for (const Vec3d& p : merged.mesh.positions) keel_off += p.y < -1e-5 && p.y > -1e-3;
+  for (const Vec3d& p : c.merged.mesh.positions) keel_off += p.y < -1e-5 && p.y > -1e-3;
   EXPECT_GT(keel_off, 0u);
-  PlaneCutOptions co;
-  co.axis = 1;
-  co.value = 0;
-  co.keep_below = false;
-  const PlaneCut cut = cut_at_plane(patches, merged.mesh, co);
-  EXPECT_EQ(faces_without_area(cut.mesh), 0u);
+  EXPECT_EQ(faces_without_area(c.cut.mesh), 0u);
 }
 
 // The property test's seed 1107 (of 160): a full round-bilge hull, 81.9 m, with overlaps and every
@@ -377,19 +390,9 @@ TEST(CutAtPlane, CrossingsRefinedToOnePointAreOneVertex) {
     spec.defects.overlap = 0.05;
     spec.defects.flip_every = 3;
     spec.defects.seed = 1107;
-    std::vector<Patch> patches = generate_hull(spec).patches;
-    for (Patch& p : patches) p.reversed = false;  // as `hullmesh generate` writes them
-    TessellateOptions o;
-    o.edge_length = edge_length_for_triangles(patches, triangles);
-    const Tessellation tess = tessellate(patches, o, silent_progress());
-    const MergedSurface merged = merge_patches(patches, tess.mesh, {}, silent_progress());
-    PlaneCutOptions co;
-    co.axis = 1;
-    co.value = 0;
-    co.keep_below = false;
-    const PlaneCut cut = cut_at_plane(patches, merged.mesh, co);
-    EXPECT_EQ(faces_without_area(cut.mesh), 0u);
-    const EdgeAdjacency adj = build_edge_adjacency(cut.mesh.faces, cut.mesh.vertex_count());
+    const FullHullCut c = centre_cut_of_merged(spec, triangles);
+    EXPECT_EQ(faces_without_area(c.cut.mesh), 0u);
+    const EdgeAdjacency adj = build_edge_adjacency(c.cut.mesh.faces, c.cut.mesh.vertex_count());
     EXPECT_TRUE(adj.nonmanifold_edges.empty());
   }
 }

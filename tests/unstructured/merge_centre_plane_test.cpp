@@ -7,12 +7,8 @@
 #include "support/hull_spec.h"
 #include "unstructured/merge_support.h"
 
-namespace hm {
+namespace hm::test {
 namespace {
-
-using test::expect_clean_half_hull;
-using test::merge_of;
-using test::Merged;
 
 std::size_t zero_area_faces(const SurfaceMesh& m, double length) {
   std::size_t n = 0;
@@ -28,7 +24,7 @@ std::size_t zero_area_faces(const SurfaceMesh& m, double length) {
 // A vertex lying on the other half's border line is stitched whatever the angle.
 TEST(MergeCentrePlane, HalvesMeetingOnOneLineAtTheSternAreStitched) {
   const HullSpec spec =
-      test::hull_spec(HullKind::kWigley, 72.6888, 6.99683, 2.26431, 2.87619, 5, /*full=*/true);
+      hull_spec(HullKind::kWigley, 72.6888, 6.99683, 2.26431, 2.87619, 5, /*full=*/true);
   const std::vector<Patch> patches = generate_hull(spec).patches;
   const Merged m = merge_of(patches, edge_length_for_triangles(patches, 48000));
   EXPECT_EQ(zero_area_faces(m.merged.mesh, 72.6888), 0u);
@@ -39,4 +35,4 @@ TEST(MergeCentrePlane, HalvesMeetingOnOneLineAtTheSternAreStitched) {
 }
 
 }  // namespace
-}  // namespace hm
+}  // namespace hm::test

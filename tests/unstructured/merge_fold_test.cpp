@@ -10,14 +10,8 @@
 #include "unstructured/merge_steps.h"
 #include "unstructured/merge_support.h"
 
-namespace hm {
+namespace hm::test {
 namespace {
-
-using test::expect_clean_half_hull;
-using test::generated;
-using test::merge_of;
-using test::Merged;
-using test::total_area;
 
 merge::Work work_of(std::vector<Vec3d> positions, std::vector<Face> faces,
                     std::vector<PatchId> face_patch) {
@@ -27,9 +21,7 @@ merge::Work work_of(std::vector<Vec3d> positions, std::vector<Face> faces,
   m.faces = std::move(faces);
   m.face_patch = std::move(face_patch);
   m.vertex_patch.assign(m.positions.size(), 0);
-  m.vertex_uv.assign(m.positions.size(), {});
-  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
-  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+  number_as_input(w);
   return w;
 }
 
@@ -113,4 +105,4 @@ TEST(Merge, CleanHullDropsNoFold) {
 }
 
 }  // namespace
-}  // namespace hm
+}  // namespace hm::test

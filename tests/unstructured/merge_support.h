@@ -13,6 +13,7 @@
 #include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/merge.h"
+#include "unstructured/merge_steps.h"
 
 namespace hm::test {
 
@@ -62,6 +63,16 @@ inline void expect_clean_half_hull(const Merged& m, const std::string& what) {
     // Provenance: every face keeps the patch of the input triangle it was cut from.
     ASSERT_EQ(m.merged.mesh.face_patch[f], m.tess.mesh.face_patch[m.merged.face_new2old[f]]);
   }
+}
+
+// A hand-made mesh as the merge steps take it: no (u, v), and each face and vertex its own input.
+inline void number_as_input(merge::Work& w) {
+  SurfaceMesh& m = w.mesh;
+  m.vertex_uv.assign(m.positions.size(), {});
+  w.face_old.clear();
+  w.vert_old.clear();
+  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
+  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
 }
 
 }  // namespace hm::test

@@ -225,9 +225,7 @@ merge::Work grid_with_hole(std::initializer_list<int> fins) {
     m.face_patch.push_back(2);
   }
   m.vertex_patch.assign(m.positions.size(), 0);
-  m.vertex_uv.assign(m.positions.size(), {});
-  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
-  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+  test::number_as_input(w);
   return w;
 }
 
@@ -293,9 +291,7 @@ merge::Work grid_with_three_vertex_hole(double b_y) {
     }
   }
   m.vertex_patch.assign(m.positions.size(), 0);
-  m.vertex_uv.assign(m.positions.size(), {});
-  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
-  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+  test::number_as_input(w);
   return w;
 }
 
@@ -365,9 +361,7 @@ TEST(MergeSteps, SlitWhoseRunsCrossIsClosedByAFan) {
       {{0, 4, 10, kInvalid}, {0, 10, 9, kInvalid}, {4, 3, 11, kInvalid}, {4, 11, 10, kInvalid}});
   m.face_patch.insert(m.face_patch.end(), {1, 1, 1, 1});
   m.vertex_patch = {0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 1};
-  m.vertex_uv.assign(m.positions.size(), {});
-  for (std::size_t f = 0; f < m.faces.size(); ++f) w.face_old.push_back(Index(f));
-  for (std::size_t v = 0; v < m.positions.size(); ++v) w.vert_old.push_back(Index(v));
+  test::number_as_input(w);
   const std::size_t faces = m.face_count();
   const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
   std::vector<std::array<Index, 2>> left_open;
