@@ -188,23 +188,25 @@ query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
 }
 
 // For each new vertex first_new + i, the vertex it is: the lowest-numbered vertex within `tol`
-// of it among the new ones and those in the plane (side 0). Sorted by x and swept, so the work is
-// the number of new vertices times the few that share an x within tol.
+// of it among the new ones and those in the plane (side 0). Sorted along an axis of the plane
+// (`along`) and swept, so the work is the number of points times the few within tol along it.
 template <class Side>
 std::vector<Index> coincident_crossings(std::span<const Vec3d> positions, Index first_new,
-                                        double tol, const Side& side) {
+                                        double tol, int along, const Side& side) {
   std::vector<Index> points;
   for (Index v = 0; v < Index(positions.size()); ++v) {
     if (v >= first_new || side(v) == 0) points.push_back(v);
   }
   std::sort(points.begin(), points.end(), [&](Index a, Index b) {
-    return positions[a].x != positions[b].x ? positions[a].x < positions[b].x : a < b;
+    const double pa = positions[a][along], pb = positions[b][along];
+    return pa != pb ? pa < pb : a < b;
   });
   std::vector<Index> to(positions.size() - first_new);
   for (std::size_t i = 0; i < to.size(); ++i) to[i] = first_new + Index(i);
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (std::size_t j = i + 1;
-         j < points.size() && positions[points[j]].x - positions[points[i]].x <= tol; ++j) {
+         j < points.size() && positions[points[j]][along] - positions[points[i]][along] <= tol;
+         ++j) {
       const Index a = std::min(points[i], points[j]), b = std::max(points[i], points[j]);
       if (b < first_new || !(norm(positions[a] - positions[b]) <= tol)) continue;
       // b is new; it becomes what a is (a's own target when a is new too and already taken).
@@ -379,7 +381,8 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
   // otherwise give a face with no area between them (a full round-bilge hull's keel under the
   // centre-plane cut, the property test's seed 1107). Each new vertex takes the lowest index at
   // its point; the vertices already in the mesh keep theirs.
-  const std::vector<Index> same_point = coincident_crossings(m.positions, first_new, tol, side);
+  const std::vector<Index> same_point =
+      coincident_crossings(m.positions, first_new, tol, (options.axis + 1) % 3, side);
   auto cut_vertex = [&](Index a, Index b) {
     const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
     const auto it =

@@ -11,6 +11,7 @@
 // (compact).
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -22,7 +23,7 @@ namespace {
 
 // Two faces on one edge lie on each other when their directions away from it, across the edge,
 // are within this angle.
-const double kFoldCos = std::cos(20.0 * 3.14159265358979323846 / 180.0);
+const double kFoldCos = std::cos(20.0 * std::numbers::pi / 180.0);
 
 // The unit direction from the edge (u, v) to the face's third corner, perpendicular to the edge,
 // or zero when the face has no width there.
