@@ -103,7 +103,7 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
   // station's upper end, seeds 1091 and 1134). Both left free edges below the waterline. A
   // short edge breaks a share rule; a hole breaks a hard one.
   std::vector<Vec3d> kept;
-  std::vector<std::uint8_t> kept_corner;
+  bool last_is_corner = false;  // the last node kept is a corner of pts
   Vec3d last = pts.front();
   // How far out[i] lies from the chord that would replace it, from the last node kept to the
   // next point (metric units).
@@ -118,11 +118,11 @@ std::vector<Vec3d> resample(const std::vector<Vec3d>& pts, const Metric& metric)
     const Vec3d& p = out[i];
     if (metric.length(last, p) < kMinNode && !(corner[i] && off_chord(i) >= kMinDepth)) continue;
     kept.push_back(p);
-    kept_corner.push_back(corner[i]);
+    last_is_corner = corner[i] != 0;
     last = p;
   }
   if (!kept.empty() && metric.length(kept.back(), pts.back()) < kMinNode &&
-      !(kept_corner.back() && metric.length(kept.back(), pts.back()) >= kMinCorner)) {
+      !(last_is_corner && metric.length(kept.back(), pts.back()) >= kMinCorner)) {
     kept.pop_back();
   }
   return kept;

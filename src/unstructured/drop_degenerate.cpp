@@ -9,6 +9,7 @@
 #include <functional>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "core/parallel.h"
 #include "unstructured/merge_steps.h"
@@ -32,6 +33,10 @@ void compact_faces(Work& w, std::span<const std::uint8_t> keep) {
 
 void append_faces(Work& w, std::span<const Face> faces, std::span<const Index> around) {
   SurfaceMesh& m = w.mesh;
+  std::vector<Vec3d> around_normal(around.size());
+  for (std::size_t i = 0; i < around.size(); ++i) {
+    around_normal[i] = face_normal(m.positions, m.faces[around[i]]);
+  }
   for (const Face& f : faces) {
     // The face along the hole that lies most nearly in the new face's plane (the first of
     // equals, in the order given): a face that closes a hole at a chine lies on the patch on
@@ -39,11 +44,11 @@ void append_faces(Work& w, std::span<const Face> faces, std::span<const Index> a
     const Vec3d n = face_normal(m.positions, f);
     Index like = around.front();
     double best = -2;
-    for (Index g : around) {
-      const double agree = dot(n, face_normal(m.positions, m.faces[g]));
+    for (std::size_t i = 0; i < around.size(); ++i) {
+      const double agree = dot(n, around_normal[i]);
       if (agree > best) {
         best = agree;
-        like = g;
+        like = around[i];
       }
     }
     m.faces.push_back(f);
