@@ -2,15 +2,18 @@
 // leave a hole of one or two triangles' size. Closed boundary loops of 3 or 4 vertices that run
 // along two or more patches are such holes (a true boundary of a hull is never that short); they
 // are closed with one triangle or two (split along the shorter diagonal that is not an edge
-// already). Longer loops (up to 16 vertices) are closed only when their perimeter is shorter than
-// the longest edge of the faces along them (pinholes), or when they are slits: no wider, on
-// average, than the gap tolerance at their edges, two borders that the snap left apart where it
-// closes gaps as wide (a fold test or a third patch's tip in the way). A slit is closed by ear
-// clipping, the shortest diagonal first that is not an edge of the mesh already.
+// already; where only one is free and it would fold, by collapsing the taken one). Longer loops (up
+// to 16 vertices) are closed only when their perimeter is shorter than the longest edge of the
+// faces along them (pinholes), or when they are slits: no wider, on average, than the gap tolerance
+// at their edges, two borders that the snap left apart where it closes gaps as wide (a fold test or
+// a third patch's tip in the way). A slit is closed by ear clipping, the shortest diagonal first
+// that is not an edge of the mesh already.
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <iterator>
 #include <set>
+#include <vector>
 
 #include "mesh/adjacency.h"
 #include "unstructured/merge_steps.h"
@@ -133,6 +136,97 @@ bool split_across_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector
   return true;
 }
 
+// The dihedral beyond which two faces closing a four-vertex hole across its free diagonal fold
+// back on each other (cosine of 120 degrees): the hole is a dart round the taken diagonal.
+constexpr double kFoldedFill = -0.5;
+// How far a face round the collapsed vertex may turn (cosine of 60 degrees).
+constexpr double kCollapseTurn = 0.5;
+
+// The faces using vertex v (a scan: collapses are rare).
+std::vector<Index> faces_of(const SurfaceMesh& m, Index v) {
+  std::vector<Index> out;
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    const Face& t = m.faces[f];
+    if (t[0] == v || t[1] == v || t[2] == v) out.push_back(Index(f));
+  }
+  return out;
+}
+
+// Closes the four-vertex hole r, whose diagonal r[1] - r[3] is an edge of the mesh already and
+// whose other diagonal would fold (a dart: r[1] or r[3] lies inside the triangle of the other
+// three), by collapsing that edge: one of its ends moves onto the other, its two faces lose
+// their area, and the hole's sides pair up. This is where the overlap remnants of two chine
+// hull halves meet the stem (generated chine hull, seed 1035): the stem's lowest edge of the
+// sides stands on the bottoms' dart. The end moved is the one whose faces turn least, none more
+// than kCollapseTurn allows; the link of the edge must be its two faces' far corners and the
+// hole's other two vertices, or a third face would meet at an edge. The collapsed faces keep a
+// repeated corner and the moved vertex stays unused (drop_degenerate removes both). False (and
+// nothing changed) when no end may move or a face round it changed in this pass (`touched`).
+bool collapse_across_dart(Work& w, const std::vector<Index>& r,
+                          std::vector<std::uint8_t>& touched) {
+  SurfaceMesh& m = w.mesh;
+  const Index b = r[1], d = r[3];
+  const std::vector<Index> fb = faces_of(m, b), fd = faces_of(m, d);
+  std::vector<Index> shared;
+  std::set_intersection(fb.begin(), fb.end(), fd.begin(), fd.end(), std::back_inserter(shared));
+  if (shared.size() != 2) return false;
+  // The link check: the vertices next to both ends.
+  const auto ring = [&](const std::vector<Index>& fs, Index v) {
+    std::set<Index> out;
+    for (Index f : fs) {
+      for (int c = 0; c < 3; ++c) {
+        if (m.faces[f][c] != v) out.insert(m.faces[f][c]);
+      }
+    }
+    return out;
+  };
+  const std::set<Index> rb = ring(fb, b), rd = ring(fd, d);
+  std::set<Index> common;
+  std::set_intersection(rb.begin(), rb.end(), rd.begin(), rd.end(),
+                        std::inserter(common, common.end()));
+  std::set<Index> want{r[0], r[2]};
+  for (Index f : shared) {
+    for (int c = 0; c < 3; ++c) {
+      if (m.faces[f][c] != b && m.faces[f][c] != d) want.insert(m.faces[f][c]);
+    }
+  }
+  if (common != want) return false;
+  for (const std::vector<Index>* fs : {&fb, &fd}) {
+    for (Index f : *fs) {
+      if (f >= touched.size() || touched[f]) return false;
+    }
+  }
+  // The least cosine of the turn of the faces round `from` when it moves onto `onto`.
+  const auto least_turn = [&](const std::vector<Index>& fs, Index from, Index onto) {
+    double least = 1;
+    for (Index f : fs) {
+      if (std::binary_search(shared.begin(), shared.end(), f)) continue;
+      Face moved = m.faces[f];
+      for (int c = 0; c < 3; ++c) {
+        if (moved[c] == from) moved[c] = onto;
+      }
+      const Vec3d before = face_normal(m.positions, m.faces[f]);
+      const Vec3d after = face_normal(m.positions, moved);
+      const double nb = norm(before), na = norm(after);
+      if (!(nb > 0) || !(na > 0)) return -1.0;
+      least = std::min(least, dot(before, after) / (nb * na));
+    }
+    return least;
+  };
+  const double move_d = least_turn(fd, d, b), move_b = least_turn(fb, b, d);
+  if (std::max(move_d, move_b) < kCollapseTurn) return false;
+  const bool d_moves = move_d >= move_b;
+  const Index from = d_moves ? d : b, onto = d_moves ? b : d;
+  for (Index f : d_moves ? fd : fb) {
+    for (int c = 0; c < 3; ++c) {
+      if (m.faces[f][c] == from) m.faces[f][c] = onto;
+    }
+    touched[f] = 1;
+  }
+  for (Index f : d_moves ? fb : fd) touched[f] = 1;
+  return true;
+}
+
 // A boundary loop that passes a vertex twice (a hole touching the hull's outline at one vertex)
 // is several cycles; cut it there. Each cycle is (vertices, edges), edges[i] leaving vertices[i].
 std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const BoundaryLoop& loop) {
@@ -157,8 +251,8 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
 
 }  // namespace
 
-std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
-                             std::vector<std::array<Index, 2>>* left_open) {
+HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
+                           std::vector<std::array<Index, 2>>* left_open) {
   SurfaceMesh& m = w.mesh;
   if (left_open) left_open->clear();
   // A hole this step would close but cannot: its edges go to left_open.
@@ -166,7 +260,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
     if (!left_open) return;
     for (std::size_t i = 0; i < r.size(); ++i) left_open->push_back({r[i], r[(i + 1) % r.size()]});
   };
-  std::size_t filled = 0;
+  HoleStats stats;
   // The mesh's edges as sorted keys, collected at the first hole of four vertices.
   std::vector<std::uint64_t> edge_keys;
   const auto is_edge = [&](Index a, Index b) {
@@ -178,11 +272,15 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
     const std::uint64_t k = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
     return std::binary_search(edge_keys.begin(), edge_keys.end(), k);
   };
-  std::vector<std::uint8_t> split(m.face_count(), 0);  // faces split_across_flat_hole changed
+  std::vector<std::uint8_t> split(m.face_count(), 0);  // faces split or collapsed in this pass
+  // Vertices of the holes closed by a collapse: a later hole through them waits for the next
+  // pass, whose adjacency is current.
+  std::vector<std::uint8_t> changed(m.vertex_count(), 0);
   for (const BoundaryLoop& loop : adj.boundary_loops) {
     if (!loop.closed) continue;
     for (const auto& [r, edges] : cycles_of(loop)) {
       if (r.size() < 3 || r.size() > kMaxHoleVertices) continue;
+      if (std::any_of(r.begin(), r.end(), [&](Index v) { return changed[v] != 0; })) continue;
       std::set<PatchId> patches;
       std::vector<Index> around;  // the faces along the hole
       double perimeter = 0, local = 0, tolerance = 0;
@@ -217,7 +315,7 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
       // The loop follows its faces' winding, so the new faces run against it.
       std::vector<Face> add;
       if (r.size() == 3 && split_across_flat_hole(w, adj, r, edges, split)) {
-        ++filled;
+        ++stats.filled;
         continue;
       }
       if (r.size() == 3) {
@@ -245,6 +343,22 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
           leave_open(r);
           continue;
         }
+        if (d02 != d13) {
+          // One diagonal taken: closing across the other must not fold back on itself.
+          const std::vector<Index> q =
+              d02 ? r : std::vector<Index>{r[1], r[2], r[3], r[0]};  // taken: q[1] - q[3]
+          const Vec3d n0 = face_normal(m.positions, {q[0], q[2], q[1], kInvalid});
+          const Vec3d n1 = face_normal(m.positions, {q[0], q[3], q[2], kInvalid});
+          const double nn = norm(n0) * norm(n1);
+          if (nn > 0 && dot(n0, n1) < kFoldedFill * nn) {
+            if (collapse_across_dart(w, q, split)) {
+              for (Index v : q) changed[v] = 1;
+              ++stats.filled;
+              ++stats.collapsed;
+              continue;
+            }
+          }
+        }
         if (d02 && (!d13 || norm(m.positions[r[0]] - m.positions[r[2]]) <=
                                 norm(m.positions[r[1]] - m.positions[r[3]]))) {
           add.push_back({r[0], r[2], r[1], kInvalid});
@@ -255,10 +369,10 @@ std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptio
         }
       }
       append_faces(w, add, around);
-      ++filled;
+      ++stats.filled;
     }
   }
-  return filled;
+  return stats;
 }
 
 }  // namespace hm::merge

@@ -47,12 +47,13 @@ constexpr int kSnapRetries = 3;
 // vertex chain as one loop until one of them is closed. `adj` is the mesh's adjacency on entry
 // and is kept current. Returns the holes filled; left_open gets the edges of those it could not.
 std::size_t fill_holes(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& options,
-                       std::vector<std::array<Index, 2>>& left_open) {
+                       double length, std::vector<std::array<Index, 2>>& left_open) {
   std::size_t total = 0;
   for (int pass = 0; pass < 3; ++pass) {
-    const std::size_t filled = merge::fill_small_holes(w, adj, options, &left_open);
-    total += filled;
-    if (filled == 0) break;
+    const merge::HoleStats filled = merge::fill_small_holes(w, adj, options, &left_open);
+    total += filled.filled;
+    if (filled.filled == 0) break;
+    if (filled.collapsed > 0) merge::drop_degenerate(w, length);
     adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   }
   return total;
@@ -89,7 +90,7 @@ merge::SnapStats close_seams(std::span<const Patch> patches, const merge::Work& 
     const merge::SnapStats s = merge::snap_borders(w, border, options, length, scale);
     r.degenerate_faces_dropped = merge::drop_degenerate(w, length);
     r.patches_flipped = merge::orient_faces(patches, w, adj);
-    r.holes_filled = fill_holes(w, adj, options, trouble);
+    r.holes_filled = fill_holes(w, adj, options, length, trouble);
     const std::pair<std::size_t, std::size_t> rank{adj.nonmanifold_edges.size(), trouble.size()};
     for (Index e : adj.nonmanifold_edges) trouble.push_back({adj.edges[e].v0, adj.edges[e].v1});
     bool changed = false;
@@ -188,7 +189,7 @@ void drop_folds(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& options,
   r.degenerate_faces_dropped += merge::drop_degenerate(w, length);  // and the unused vertices
   adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   std::vector<std::array<Index, 2>> left_open;
-  r.holes_filled += fill_holes(w, adj, options, left_open);
+  r.holes_filled += fill_holes(w, adj, options, length, left_open);
 }
 
 }  // namespace

@@ -64,8 +64,15 @@ SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& option
 // faces take the provenance of a face along the loop (append_faces). left_open, when given, gets
 // the edges (vertex pairs) of the holes it would close but cannot: a hole of four vertices whose
 // both diagonals are edges already, a slit with no ear free to clip. Both are folds the snap made.
-std::size_t fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
-                             std::vector<std::array<Index, 2>>* left_open = nullptr);
+// A hole of four vertices with one diagonal taken, whose other would fold back on itself (a dart
+// round the taken diagonal), is closed by collapsing the taken edge instead: its two faces keep a
+// repeated corner and the moved vertex is left unused, for drop_degenerate.
+struct HoleStats {
+  std::size_t filled = 0;     // holes closed, the collapsed among them
+  std::size_t collapsed = 0;  // closed by collapsing a taken diagonal
+};
+HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
+                           std::vector<std::array<Index, 2>>* left_open = nullptr);
 
 // Zips shut the boundary loops along two or more patches whose mean width (twice the area over
 // the perimeter) is at most `widest` metres: gaps wider than the border edges, which the snap

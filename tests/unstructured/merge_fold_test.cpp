@@ -2,7 +2,9 @@
 // three faces, two of them on each other (drop_folded_faces).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 #include <vector>
 
@@ -102,6 +104,43 @@ TEST(Merge, CleanHullDropsNoFold) {
   expect_clean_half_hull(m, "chine, 100 patches");
   EXPECT_EQ(m.merged.report.folded_faces_dropped, 0u);
   EXPECT_NEAR(total_area(m.merged.mesh) / total_area(m.tess.mesh), 1.0, 1e-3);
+}
+
+// Property seed 1035: a full chine hull of 12 patches with 5% overlaps. Where the chines meet the
+// stem, the snap leaves a hole of four vertices (the two chine ends, two stem points) round the
+// sides' lowest stem edge: a dart whose free diagonal crosses the centre plane. Closed across it,
+// the two faces folded back on each other (180 degrees) and hid the chines' last metre; the
+// stem edge is collapsed instead, and the chines run to the stem.
+TEST(Merge, DartHoleAtTheStemIsClosedByCollapsingItsTakenDiagonal) {
+  HullSpec spec;
+  spec.kind = HullKind::kChine;
+  spec.length = 140.558;
+  spec.beam = 13.3215;
+  spec.draft = 5.12772;
+  spec.depth = 6.37601;
+  spec.patches = 12;
+  spec.full_hull = true;
+  spec.defects.overlap = 0.05;
+  spec.defects.seed = 1035;
+  const Merged m = merge_of(generate_hull(spec).patches);
+  const SurfaceMesh& mesh = m.merged.mesh;
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  double sharpest = 1;                         // the least cosine between neighbouring faces
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const Index g = m.adj.opposite_face[4 * f + c];
+      if (g == kInvalid) continue;
+      sharpest = std::min(sharpest, dot(face_normal(mesh.positions, mesh.faces[f]),
+                                        face_normal(mesh.positions, mesh.faces[g])));
+    }
+  }
+  EXPECT_GT(sharpest, std::cos(120 * std::numbers::pi / 180));  // the stem is about 105 degrees
+  // The transom's bottom and side edges on each side, both chines, keel and stem: the chines
+  // run to the point where keel and stem meet.
+  const FeatureSet f = find_features(mesh, m.adj, m.patches, {});
+  EXPECT_EQ(f.knuckles.size(), 8u);
 }
 
 }  // namespace

@@ -181,10 +181,10 @@ TEST(MergeSteps, SlitBetweenTwoBordersIsClosed) {
   merge::Work kept = w;
   MergeOptions narrow;
   narrow.gap_tolerance = 0.005;
-  EXPECT_EQ(merge::fill_small_holes(kept, before, narrow), 0u);
+  EXPECT_EQ(merge::fill_small_holes(kept, before, narrow).filled, 0u);
   EXPECT_EQ(kept.mesh.faces.size(), m.faces.size());
 
-  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}), 1u);
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}).filled, 1u);
   const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
   EXPECT_TRUE(after.nonmanifold_edges.empty());
   EXPECT_TRUE(after.inconsistent_edges.empty());
@@ -239,7 +239,7 @@ TEST(MergeSteps, SmallHoleIsNotClosedAlongAnExistingEdge) {
   const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
   ASSERT_TRUE(before.nonmanifold_edges.empty());
   std::vector<std::array<Index, 2>> left_open;
-  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 1u);
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open).filled, 1u);
   EXPECT_TRUE(left_open.empty());
   const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
   EXPECT_TRUE(after.nonmanifold_edges.empty());
@@ -255,7 +255,7 @@ TEST(MergeSteps, HoleWithBothDiagonalsTakenIsNamedAsLeftOpen) {
   const std::size_t faces = w.mesh.face_count();
   const EdgeAdjacency before = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   std::vector<std::array<Index, 2>> left_open;
-  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 0u);
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open).filled, 0u);
   EXPECT_EQ(w.mesh.face_count(), faces);
   ASSERT_EQ(left_open.size(), 4u);
   std::set<Index> corners;
@@ -312,7 +312,7 @@ TEST(MergeSteps, FlatThreeVertexHoleSplitsTheFaceAcross) {
   const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
   ASSERT_EQ(before.boundary_loops.size(), 2u);
   std::vector<std::array<Index, 2>> left_open;
-  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 1u);
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open).filled, 1u);
   EXPECT_TRUE(left_open.empty());
   EXPECT_EQ(m.face_count(), faces + 1);
   EXPECT_GT(smallest_face_area(m), 0.2);  // halves of a unit cell's triangle: 0.25
@@ -332,7 +332,7 @@ TEST(MergeSteps, ThreeVertexHoleWithAreaGetsATriangle) {
   const SurfaceMesh& m = w.mesh;
   const std::size_t faces = m.face_count();
   const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
-  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, nullptr), 1u);
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, nullptr).filled, 1u);
   EXPECT_EQ(m.face_count(), faces + 1);
   const Face& added = m.faces.back();
   EXPECT_NEAR(face_area(m.positions, added), 0.1, 1e-12);  // base 1, height 0.2
@@ -365,7 +365,7 @@ TEST(MergeSteps, SlitWhoseRunsCrossIsClosedByAFan) {
   const std::size_t faces = m.face_count();
   const EdgeAdjacency before = build_edge_adjacency(m.faces, m.vertex_count());
   std::vector<std::array<Index, 2>> left_open;
-  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open), 1u);
+  EXPECT_EQ(merge::fill_small_holes(w, before, MergeOptions{}, &left_open).filled, 1u);
   EXPECT_TRUE(left_open.empty());
   EXPECT_EQ(m.face_count(), faces + 3);  // five vertices, three faces
   const EdgeAdjacency after = build_edge_adjacency(m.faces, m.vertex_count());
