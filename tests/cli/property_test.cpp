@@ -74,10 +74,10 @@ Case random_case(std::uint64_t seed) {
   // Merge.CentrePlaneCornerOfAFlippedHalf*). All 32 cases (HM_PROPERTY_CASES=32) pass since
   // the evening of 2026-12-04, and all 64 since that night, when the structured mesher began to
   // split non-convex quads (seed 1063: its forefoot end cap had a quad with three corners on the
-  // stem, mirrored onto its twin; SplitNonConvex.*). Of 200 the same night, 2 fail: 1133 (the
-  // unstructured mesher's two panels back to back at a full Wigley's forefoot, "very close") and
-  // 1035 (the structured bow cap at a fold the merge leaves where chine and stem meet, which the
-  // chine reaches since hole faces take the patch on their side); 9 of 160 failed before.
+  // stem, mirrored onto its twin; SplitNonConvex.*). Of 200 on 2026-12-05, 1 fails: 1133 (the
+  // unstructured mesher's two panels back to back at a full Wigley's forefoot, where the halves
+  // are tangent, "very close"). 1035 (the structured bow cap open at a fold the merge left where
+  // chine and stem meet) passes since Merge.DartHoleAtTheStem*; 9 of 160 failed the night before.
   const bool overlap = pick(3) == 0;
   if (overlap) g << " --overlap 0.05";
   if (pick(3) == 0) g << " --duplicate-points";
