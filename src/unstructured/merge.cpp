@@ -53,7 +53,7 @@ std::size_t fill_holes(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& o
     const merge::HoleStats filled = merge::fill_small_holes(w, adj, options, &left_open);
     total += filled.filled;
     if (filled.filled == 0) break;
-    if (filled.collapsed > 0) merge::drop_degenerate(w, length);
+    if (filled.left_degenerate > 0) merge::drop_degenerate(w, length);
     adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   }
   return total;

@@ -66,10 +66,12 @@ SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& option
 // both diagonals are edges already, a slit with no ear free to clip. Both are folds the snap made.
 // A hole of four vertices with one diagonal taken, whose other would fold back on itself (a dart
 // round the taken diagonal), is closed by collapsing the taken edge instead: its two faces keep a
-// repeated corner and the moved vertex is left unused, for drop_degenerate.
+// repeated corner and the moved vertex is left unused. One with both diagonals taken where one
+// face runs along two of its sides (a remnant folded over the patch below) is closed by that
+// face's going and the quad's other half taking its place. Both leave work for drop_degenerate.
 struct HoleStats {
-  std::size_t filled = 0;     // holes closed, the collapsed among them
-  std::size_t collapsed = 0;  // closed by collapsing a taken diagonal
+  std::size_t filled = 0;           // holes closed, the next among them
+  std::size_t left_degenerate = 0;  // closed by a collapse or a remnant's going
 };
 HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
                            std::vector<std::array<Index, 2>>* left_open = nullptr);
