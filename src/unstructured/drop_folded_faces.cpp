@@ -100,4 +100,51 @@ FoldStats drop_folded_faces(Work& w, const EdgeAdjacency& adj) {
   return stats;
 }
 
+FoldStats drop_inconsistent_remnants(Work& w, const EdgeAdjacency& adj) {
+  FoldStats stats;
+  if (adj.inconsistent_edges.empty()) return stats;
+  const SurfaceMesh& m = w.mesh;
+  const auto open_edges = [&](Index f) {
+    int n = 0;
+    for (int c = 0; c < 3; ++c)
+      n += adj.slot_edge[4 * f + c] != kInvalid && adj.edges[adj.slot_edge[4 * f + c]].uses == 1;
+    return n;
+  };
+  // Turned against every face across its edges (two at least).
+  const auto inverted = [&](Index f) {
+    const Vec3d n = face_normal(m.positions, m.faces[f]);
+    int across = 0, against = 0;
+    for (int c = 0; c < 3; ++c) {
+      const Index g = adj.opposite_face[4 * f + c];
+      if (g == kInvalid) continue;
+      ++across;
+      against += dot(n, face_normal(m.positions, m.faces[g])) < 0;
+    }
+    return across >= 2 && against == across;
+  };
+  std::vector<std::uint8_t> keep(m.face_count(), 1);
+  for (Index e : adj.inconsistent_edges) {
+    // collect: the edge's two faces; score: on each other, or one inside out.
+    const MeshEdge& edge = adj.edges[e];
+    const Index a = edge.first_slot / 4, b = adj.opposite_face[edge.first_slot];
+    if (b == kInvalid || !keep[a] || !keep[b]) continue;
+    Index drop = kInvalid;
+    const Vec3d away_a = away_from_edge(m, m.faces[a], edge.v0, edge.v1);
+    const Vec3d away_b = away_from_edge(m, m.faces[b], edge.v0, edge.v1);
+    if (m.face_patch[a] != m.face_patch[b] && dot(away_a, away_b) >= kFoldCos) {
+      const auto rank = [&](Index f) { return std::make_tuple(open_edges(f), m.face_patch[f], f); };
+      drop = rank(a) > rank(b) ? a : b;
+    } else if (inverted(a) != inverted(b)) {
+      drop = inverted(a) ? a : b;
+    }
+    if (drop == kInvalid) continue;
+    // apply
+    keep[drop] = 0;
+    ++stats.faces;
+    stats.area += face_area(m.positions, m.faces[drop]);
+  }
+  if (stats.faces > 0) compact_faces(w, keep);
+  return stats;
+}
+
 }  // namespace hm::merge

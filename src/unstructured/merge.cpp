@@ -177,11 +177,15 @@ void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& befor
 
 // Edges with three faces that the retries left, where a face of one patch lies on another's
 // across the edge (drop_folded_faces): the remnant goes, and the small hole it leaves, if any, is
-// closed. Only a merge that would otherwise fail runs it, so every other comes out as before.
+// closed. Where there is none, edges both faces traverse the same way are treated alike
+// (drop_inconsistent_remnants). Only a merge
+// that would otherwise fail, or keep an inconsistent edge, runs it, so every other comes out as
+// before.
 void drop_folds(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& options, double length,
                 MergeReport& r) {
-  if (adj.nonmanifold_edges.empty()) return;
-  const merge::FoldStats folds = merge::drop_folded_faces(w, adj);
+  if (adj.nonmanifold_edges.empty() && adj.inconsistent_edges.empty()) return;
+  merge::FoldStats folds = merge::drop_folded_faces(w, adj);
+  if (folds.faces == 0) folds = merge::drop_inconsistent_remnants(w, adj);
   if (folds.faces == 0) return;
   r.folded_faces_dropped = folds.faces;
   r.overlap_triangles_removed += folds.faces;

@@ -120,6 +120,25 @@ TEST(Merge, RemnantAlongTwoSidesOfAHoleMakesWayForTheOtherHalf) {
   EXPECT_EQ(m.merged.report.snap_retries, 0u);  // the hole sent the snap back three times
 }
 
+// Edges both faces traverse the same way, left after the retries. Round-bilge 100 with 0.1 m gaps
+// and 5% overlaps: a sliver of patch 36 whose corner the snap welded across its far side, at
+// x = 9.5 m, turned inside out against all three faces across its edges. With every defect as
+// well: a face of patch 76 lying on one of patch 44 across their shared edge, at x = 34.5 m.
+// The remnant goes in both, and the holes round it close.
+TEST(Merge, RemnantsOnEdgesTraversedTheSameWayAreDropped) {
+  HullDefects d;
+  d.gap = 0.1;
+  d.overlap = 0.05;
+  const Merged inverted = merge_of(generated(HullKind::kRoundBilge, 100, d).patches);
+  expect_clean_half_hull(inverted, "round-bilge, 100 patches, 0.1 m gaps, 5% overlaps");
+  EXPECT_EQ(inverted.merged.report.folded_faces_dropped, 1u);
+  d.duplicate_points = true;
+  d.flip_every = 3;
+  const Merged folded = merge_of(generated(HullKind::kRoundBilge, 100, d).patches);
+  expect_clean_half_hull(folded, "round-bilge, 100 patches, every defect");
+  EXPECT_EQ(folded.merged.report.folded_faces_dropped, 2u);
+}
+
 // Property seed 1035: a full chine hull of 12 patches with 5% overlaps. Where the chines meet the
 // stem, the snap leaves a hole of four vertices (the two chine ends, two stem points) round the
 // sides' lowest stem edge: a dart whose free diagonal crosses the centre plane. Closed across it,
