@@ -1,12 +1,13 @@
 // Orientation: one winding over the whole hull, normals out of the ship.
 //
-// declared winding (reversed patches turned) -> vote per patch pair over shared edges -> walk the
-// patch graph from the largest patch, turning patches that disagree -> turn each connected part
-// whose enclosed volume is negative -> report the patches that ended against their declaration.
+// declared winding (reversed patches turned) -> vote per patch pair over shared edges -> join the
+// patches strongest link first, turning those that disagree -> turn each connected part whose
+// enclosed volume is negative -> report the patches that ended against their declaration.
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <numeric>
-#include <queue>
+#include <utility>
 
 #include "core/bbox.h"
 #include "unstructured/merge_steps.h"
@@ -110,42 +111,59 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w,
     }
     std::sort(votes.begin(), votes.end(),
               [](const Vote& a, const Vote& b) { return a.p != b.p ? a.p < b.p : a.q < b.q; });
-    std::vector<std::vector<std::pair<PatchId, bool>>> graph(np);  // neighbour, disagrees
+    // One link per patch pair: its net vote decides whether the two disagree.
+    struct Link {
+      long weight;  // |net vote|: edges that agree on it, less those that do not
+      PatchId p, q;
+      bool disagrees;
+    };
+    std::vector<Link> links;
     for (std::size_t i = 0; i < votes.size();) {
       long sum = 0;
       std::size_t j = i;
       for (; j < votes.size() && votes[j].p == votes[i].p && votes[j].q == votes[i].q; ++j) {
         sum += votes[j].alike;
       }
-      if (sum != 0) {
-        graph[votes[i].p].push_back({votes[i].q, sum > 0});
-        graph[votes[i].q].push_back({votes[i].p, sum > 0});
-      }
+      if (sum != 0) links.push_back({std::abs(sum), votes[i].p, votes[i].q, sum > 0});
       i = j;
     }
-    std::vector<std::size_t> size(np, 0);
-    for (PatchId p : m.face_patch) ++size[p];
-    std::vector<PatchId> roots(np);
-    std::iota(roots.begin(), roots.end(), PatchId{0});
-    std::stable_sort(roots.begin(), roots.end(),
-                     [&](PatchId a, PatchId b) { return size[a] > size[b]; });
-    std::vector<std::uint8_t> seen(np, 0);
-    for (PatchId root : roots) {
-      if (seen[root]) continue;
-      seen[root] = 1;
-      std::queue<PatchId> todo;
-      todo.push(root);
-      while (!todo.empty()) {
-        const PatchId p = todo.front();
-        todo.pop();
-        for (const auto& [q, disagrees] : graph[p]) {
-          if (seen[q]) continue;
-          seen[q] = 1;
-          turned[q] = turned[p] ^ std::uint8_t(disagrees);
-          todo.push(q);
-        }
+    // The strongest links first (ties by patch): a link that contradicts the stronger ones
+    // already taken is outvoted. Two patches that share one folded edge at a corner (+1) must
+    // not turn a patch whose long borders with its other neighbours say otherwise (round-bilge
+    // 300 with 5% overlaps at 40,000 triangles: patches 50, 99 and 148 were turned, 74 edges
+    // wound alike, when the walk reached them first across such a corner).
+    std::stable_sort(links.begin(), links.end(),
+                     [](const Link& a, const Link& b) { return a.weight > b.weight; });
+    // Union-find with parity: parity[x] is x's turn relative to parent[x].
+    std::vector<PatchId> parent(np);
+    std::iota(parent.begin(), parent.end(), PatchId{0});
+    std::vector<std::uint8_t> parity(np, 0);
+    const auto find = [&](PatchId x) {
+      std::uint8_t turn = 0;
+      PatchId r = x;
+      while (parent[r] != r) turn ^= parity[r], r = parent[r];
+      // Path compression: every node on the path points at the root with its full turn.
+      std::uint8_t left = turn;
+      while (parent[x] != x) {
+        const PatchId next = parent[x];
+        const std::uint8_t own = parity[x];
+        parent[x] = r;
+        parity[x] = left;
+        left ^= own;
+        x = next;
       }
+      return std::pair<PatchId, std::uint8_t>{r, turn};
+    };
+    for (const Link& l : links) {
+      const auto [rp, tp] = find(l.p);
+      const auto [rq, tq] = find(l.q);
+      if (rp == rq) continue;  // decided by stronger links
+      // The lower-numbered root stays a root: the result does not depend on the sort's ties.
+      const PatchId hi = std::max(rp, rq), lo = std::min(rp, rq);
+      parent[hi] = lo;
+      parity[hi] = std::uint8_t(tp ^ tq ^ std::uint8_t(l.disagrees));
     }
+    for (std::size_t p = 0; p < np; ++p) turned[p] = find(PatchId(p)).second;
     for (std::size_t f = 0; f < m.face_count(); ++f) {
       if (turned[m.face_patch[f]]) reverse_face(m.faces[f]);
     }

@@ -139,6 +139,20 @@ TEST(Merge, RemnantsOnEdgesTraversedTheSameWayAreDropped) {
   EXPECT_EQ(folded.merged.report.folded_faces_dropped, 2u);
 }
 
+// Round-bilge 300 with 5% overlaps at 40,000 triangles: patches 1 and 50 share one edge at a
+// corner, which the snap left wound alike (+1), while patch 50's long borders with patches 0, 51,
+// 99 and 296 say it agrees with them. The walk over the patch graph reached 50 from 1 first and
+// turned it, and 99 and 148 after it: 74 edges wound alike and 8 holes. The strongest links
+// decide first now, and no patch of this unflipped hull is turned.
+TEST(Merge, AFoldedCornerEdgeDoesNotTurnAPatchItsLongBordersHold) {
+  HullDefects d;
+  d.overlap = 0.05;
+  const std::vector<Patch> patches = generated(HullKind::kRoundBilge, 300, d).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 40000));
+  expect_clean_half_hull(m, "round-bilge, 300 patches, 5% overlaps, 40,000 triangles");
+  EXPECT_TRUE(m.merged.report.patches_flipped.empty());
+}
+
 // Property seed 1035: a full chine hull of 12 patches with 5% overlaps. Where the chines meet the
 // stem, the snap leaves a hole of four vertices (the two chine ends, two stem points) round the
 // sides' lowest stem edge: a dart whose free diagonal crosses the centre plane. Closed across it,
