@@ -4,14 +4,19 @@
 // end of the loop to the other, are joined by triangles, each time across the shorter of the two
 // next diagonals (the classic zipper between two polylines).
 //
-// collect (closed loops along two or more patches, each vertex once) -> score (mean width, twice
+// collect (closed loops along two or more patches, cut into simple cycles where they pass a
+// vertex twice) -> score (mean width, twice
 // the area over the perimeter, within the widest gap) -> select (the two ends: the vertex
 // farthest from the centroid and the vertex farthest from it) -> apply (zip, refusing a diagonal
 // that is an edge already or longer than kLongestDiagonal widths) -> the faces run against the
 // loop, so the winding stays consistent.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <set>
+#include <span>
+#include <vector>
 
 #include "mesh/adjacency.h"
 #include "unstructured/merge_steps.h"
@@ -68,6 +73,70 @@ std::vector<Face> zip(const SurfaceMesh& m, const std::vector<Index>& r, std::si
   return out;
 }
 
+// The widest angle at a notch's apex between the loop's two edges there, radians.
+const double kNotchApex = std::numbers::pi / 3;
+
+// The least cosine between a notch face and the face along the loop it joins (72 degrees): a
+// gap's faces lie nearly in the surface on both sides, or across a knuckle between them; a lid
+// across a sharp corner of the outline (a full hull's bow at the deck) stands square to them.
+constexpr double kNotchAgree = 0.3;
+
+// Faces closing a notch of cycle r (its vertices in its faces' winding, edges[i] leaving r[i])
+// at apex i: where a gap between two patches opens onto a boundary (the transom of a full hull
+// whose halves stand apart meets the deck there), the loop runs into the gap and back out, and
+// the gap is no closed loop of its own. From the apex the two runs are zipped outwards while the
+// next diagonal is at most `widest` and no edge already, and each new face agrees with the face
+// along the loop it joins (kNotchAgree; at a convex corner of a true boundary the first face
+// would turn over, or stand as a lid). Empty when the apex is no such notch: the edges at it from
+// one patch, an angle between them wider than kNotchApex, or the mouth wider than `widest`.
+template <class IsEdge>
+std::vector<Face> close_notch(const SurfaceMesh& m, const EdgeAdjacency& adj,
+                              const std::vector<Index>& r, const std::vector<Index>& edges,
+                              std::size_t i, double widest, std::span<const std::uint8_t> used,
+                              IsEdge&& is_edge) {
+  const std::size_t k = r.size();
+  const auto face_of = [&](std::size_t e) { return adj.edges[edges[e % k]].first_slot / 4; };
+  const Index f_in = face_of(i + k - 1), f_out = face_of(i);
+  if (m.face_patch[f_in] == m.face_patch[f_out]) return {};
+  const auto ok = [&](Index u, Index v) {
+    return !is_edge(u, v) && norm(m.positions[u] - m.positions[v]) <= widest;
+  };
+  const auto agrees = [&](const Face& add, Index along) {
+    return dot(face_normal(m.positions, add), face_normal(m.positions, m.faces[along])) >
+           kNotchAgree;
+  };
+  // a[n] = r[i + n] (with the loop), b[n] = r[i - n] (against it); a[0] = b[0] is the apex.
+  const auto a = [&](std::size_t n) { return r[(i + n) % k]; };
+  const auto b = [&](std::size_t n) { return r[(i + k - n % k) % k]; };
+  if (k < 5 || !ok(a(1), b(1))) return {};
+  // The loop turns back at the apex (within kNotchApex), not merely from one patch to the next
+  // along a run.
+  const Vec3d to_a = normalized(m.positions[a(1)] - m.positions[a(0)]);
+  const Vec3d to_b = normalized(m.positions[b(1)] - m.positions[a(0)]);
+  if (!(dot(to_a, to_b) >= std::cos(kNotchApex))) return {};
+  const Face first{a(1), a(0), b(1), kInvalid};
+  if (!agrees(first, f_in) || !agrees(first, f_out)) return {};
+  std::vector<Face> out{first};
+  std::size_t ia = 1, ib = 1;
+  while (ia + ib + 2 < k) {
+    // Step a joins the loop edge a[ia] -> a[ia + 1], step b the edge b[ib + 1] -> b[ib].
+    const Face fa{a(ia + 1), a(ia), b(ib), kInvalid}, fb{b(ib), b(ib + 1), a(ia), kInvalid};
+    // A vertex another notch's faces took is where this one's runs stop.
+    const bool can_a = !used[a(ia + 1)] && ok(a(ia + 1), b(ib)) && agrees(fa, face_of(i + ia));
+    const bool can_b =
+        !used[b(ib + 1)] && ok(a(ia), b(ib + 1)) && agrees(fb, face_of(i + k - ib - 1));
+    if (!can_a && !can_b) break;
+    bool step_a = can_a;
+    if (can_a && can_b) {
+      step_a = norm(m.positions[a(ia + 1)] - m.positions[b(ib)]) <=
+               norm(m.positions[a(ia)] - m.positions[b(ib + 1)]);
+    }
+    out.push_back(step_a ? fa : fb);
+    (step_a ? ia : ib) += 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest) {
@@ -82,49 +151,76 @@ std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest) {
     return std::binary_search(edge_keys.begin(), edge_keys.end(), key) || added.count(key) > 0;
   };
   std::size_t bridged = 0;
-  for (const BoundaryLoop& loop : adj.boundary_loops) {
-    const std::vector<Index>& r = loop.vertices;
-    if (!loop.closed || r.size() < 5) continue;
-    std::vector<Index> sorted = r;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
-    std::set<PatchId> patches;
-    std::vector<Index> around;  // the faces along the loop
-    Vec3d centroid{0, 0, 0};
-    for (Index v : r) centroid += m.positions[v] / double(r.size());
-    double perimeter = 0, area2 = 0;
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      const Index f = adj.edges[loop.edges[i]].first_slot / 4;
-      patches.insert(m.face_patch[f]);
-      around.push_back(f);
-      const Vec3d& p = m.positions[r[i]];
-      const Vec3d& q = m.positions[r[(i + 1) % r.size()]];
-      perimeter += norm(q - p);
-      area2 += norm(cross(p - centroid, q - centroid));
-    }
-    // Mean width: twice the area over the perimeter, area2 / perimeter (both runs counted).
-    if (patches.size() < 2 || !(perimeter > 0) || area2 / perimeter > widest) continue;
-    std::size_t i0 = 0, j0 = 0;
-    double far = -1;
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      const double d = norm(m.positions[r[i]] - centroid);
-      if (d > far) far = d, i0 = i;
-    }
-    far = -1;
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      const double d = norm(m.positions[r[i]] - m.positions[r[i0]]);
-      if (d > far) far = d, j0 = i;
-    }
-    const std::vector<Face> add = zip(m, r, i0, j0, kLongestDiagonal * widest, is_edge);
-    if (add.empty()) continue;
+  std::vector<std::uint8_t> used(m.vertex_count(), 0);  // corners of the faces added
+  const auto commit = [&](const std::vector<Face>& add, const std::vector<Index>& around) {
     for (const Face& f : add) {
       for (int c = 0; c < 3; ++c) {
         const Index u = f[c], v = f[(c + 1) % 3];
         added.insert(std::uint64_t{std::min(u, v)} << 32 | std::max(u, v));
+        used[u] = 1;
       }
     }
     append_faces(w, add, around);
     ++bridged;
+  };
+  // Each apex of a notch in cycle r, once; a notch's faces touch no other's.
+  const auto close_notches = [&](const std::vector<Index>& r, const std::vector<Index>& edges,
+                                 const std::vector<Index>& around) {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const std::size_t k = r.size();
+      if (used[r[i]] || used[r[(i + 1) % k]] || used[r[(i + k - 1) % k]]) continue;
+      const std::vector<Face> add = close_notch(m, adj, r, edges, i, widest, used, is_edge);
+      if (!add.empty()) commit(add, around);
+    }
+  };
+  for (const BoundaryLoop& loop : adj.boundary_loops) {
+    if (!loop.closed) continue;
+    // A loop that passes a vertex twice (holes touching at a corner) is zipped cycle by cycle.
+    for (const auto& [r, edges] : cycles_of(loop)) {
+      if (r.size() < 5) continue;
+      std::set<PatchId> patches;
+      std::vector<Index> around;  // the faces along the loop
+      Vec3d centroid{0, 0, 0};
+      for (Index v : r) centroid += m.positions[v] / double(r.size());
+      double perimeter = 0, area2 = 0;
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const Index f = adj.edges[edges[i]].first_slot / 4;
+        patches.insert(m.face_patch[f]);
+        around.push_back(f);
+        const Vec3d& p = m.positions[r[i]];
+        const Vec3d& q = m.positions[r[(i + 1) % r.size()]];
+        perimeter += norm(q - p);
+        area2 += norm(cross(p - centroid, q - centroid));
+      }
+      if (patches.size() < 2 || !(perimeter > 0)) continue;
+      // Mean width: twice the area over the perimeter (both runs counted), the area of the fan
+      // from the centroid; or, where that is too wide, of the zipper's own faces. The fan
+      // overstates a slit that bends round its centroid: the stem of a full round-bilge hull
+      // whose halves stand 0.1 m apart, 2.6 m high and bent like a C, measured 0.43 m.
+      const bool thin_fan = area2 / perimeter <= widest;
+      std::size_t i0 = 0, j0 = 0;
+      double far = -1;
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const double d = norm(m.positions[r[i]] - centroid);
+        if (d > far) far = d, i0 = i;
+      }
+      far = -1;
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const double d = norm(m.positions[r[i]] - m.positions[r[i0]]);
+        if (d > far) far = d, j0 = i;
+      }
+      std::vector<Face> add = zip(m, r, i0, j0, kLongestDiagonal * widest, is_edge);
+      if (!add.empty() && !thin_fan) {
+        double zipped2 = 0;  // twice the zipper's area
+        for (const Face& f : add) zipped2 += 2 * face_area(m.positions, f);
+        if (zipped2 / perimeter > widest) add.clear();
+      }
+      if (!add.empty()) {
+        commit(add, around);
+        continue;
+      }
+      close_notches(r, edges, around);
+    }
   }
   return bridged;
 }

@@ -270,6 +270,8 @@ bool replace_remnant_in_hole(Work& w, const EdgeAdjacency& adj, const std::vecto
   return false;
 }
 
+}  // namespace
+
 // A boundary loop that passes a vertex twice (a hole touching the hull's outline at one vertex)
 // is several cycles; cut it there. Each cycle is (vertices, edges), edges[i] leaving vertices[i].
 std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const BoundaryLoop& loop) {
@@ -291,8 +293,6 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
   out.push_back({std::move(vs), std::move(es)});
   return out;
 }
-
-}  // namespace
 
 HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
                            std::vector<std::array<Index, 2>>* left_open) {

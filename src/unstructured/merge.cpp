@@ -6,6 +6,8 @@
 #include <chrono>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/bbox.h"
 #include "core/error.h"
@@ -135,6 +137,7 @@ merge::SnapStats close_seams(std::span<const Patch> patches, const merge::Work& 
 // hulls merge as before.
 constexpr double kWiden = 1.25;
 constexpr double kWidestGap = 2e-3;  // of the hull's length
+constexpr double kShorterBorder = 0.9;
 
 void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& before_snap,
                         const merge::Border& border, const MergeOptions& options, double length,
@@ -145,10 +148,24 @@ void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& befor
   std::vector<double> scale(border.vertices.size(), 1.0);
   std::size_t widened = 0;
   double widest = 0;
+  // The open vertices are numbered as after the snap, whose welds dropped vertices and so
+  // renumbered the rest; the border is numbered as before it. A vertex across an open gap was
+  // not moved, so it is found by its position (until 2026-12-05 it was looked up by its number,
+  // and most of the widened tolerances went to other vertices).
+  std::vector<std::pair<std::array<double, 3>, std::size_t>> by_position(border.vertices.size());
+  for (std::size_t i = 0; i < border.vertices.size(); ++i) {
+    const Vec3d& p = before_snap.mesh.positions[border.vertices[i]];
+    by_position[i] = {{p.x, p.y, p.z}, i};
+  }
+  std::sort(by_position.begin(), by_position.end());
   for (const merge::OpenGapVertex& o : open) {
-    const auto it = std::lower_bound(border.vertices.begin(), border.vertices.end(), o.vertex);
-    if (it == border.vertices.end() || *it != o.vertex) continue;
-    const std::size_t i = std::size_t(it - border.vertices.begin());
+    const Vec3d& p = w.mesh.positions[o.vertex];
+    const std::array<double, 3> key{p.x, p.y, p.z};
+    const auto it = std::lower_bound(by_position.begin(), by_position.end(), key,
+                                     [](const std::pair<std::array<double, 3>, std::size_t>& e,
+                                        const std::array<double, 3>& k) { return e.first < k; });
+    if (it == by_position.end() || it->first != key) continue;
+    const std::size_t i = it->second;
     const double base = merge::vertex_tolerance(options, border.edge_length[i]);
     const double want = std::min(kWiden * o.width, kWidestGap * length);
     if (!(base > 0) || !(want > base)) continue;
@@ -163,10 +180,19 @@ void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& befor
   EdgeAdjacency adj_again;
   const merge::SnapStats sa = close_seams(patches, before_snap, again, border, options, length,
                                           std::move(scale), ra, adj_again);
-  if (!(adj_again.boundary_loops.size() < adj.boundary_loops.size() &&
-        adj_again.nonmanifold_edges.size() <= adj.nonmanifold_edges.size())) {
-    return;
-  }
+  // Fewer loops; or as many but a border shorter by kShorterBorder, where the gap opened onto
+  // the hull's outline and so was no loop of its own (the chine of chine 100 with every defect
+  // at 128,000 triangles: 0.07-0.1 m apart from the transom to the stem, 174 m of border).
+  const auto border_length = [](const merge::Work& m, const EdgeAdjacency& a) {
+    double sum = 0;
+    for (Index e : a.boundary_edges) {
+      sum += norm(m.mesh.positions[a.edges[e].v1] - m.mesh.positions[a.edges[e].v0]);
+    }
+    return sum;
+  };
+  const bool fewer = adj_again.boundary_loops.size() < adj.boundary_loops.size() ||
+                     border_length(again, adj_again) < kShorterBorder * border_length(w, adj);
+  if (!(fewer && adj_again.nonmanifold_edges.size() <= adj.nonmanifold_edges.size())) return;
   ra.gap_vertices_widened = widened;
   ra.widened_to = widest;
   w = std::move(again);

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/progress.h"
@@ -75,6 +76,10 @@ struct HoleStats {
 };
 HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
                            std::vector<std::array<Index, 2>>* left_open = nullptr);
+
+// A boundary loop that passes a vertex twice (holes touching at a vertex, or a hole touching the
+// hull's outline) cut there into simple cycles: (vertices, edges), edges[i] leaving vertices[i].
+std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const BoundaryLoop& loop);
 
 // Zips shut the boundary loops along two or more patches whose mean width (twice the area over
 // the perimeter) is at most `widest` metres: gaps wider than the border edges, which the snap

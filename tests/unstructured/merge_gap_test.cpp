@@ -1,0 +1,82 @@
+// Gaps the snap leaves open: measured and snapped again with a wider tolerance, zipped shut where
+// they stay thin loops, and closed from their end where they open onto the hull's outline.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "unstructured/merge_support.h"
+
+namespace hm::test {
+namespace {
+
+// Length of the merged surface's boundary, m.
+double boundary_length(const Merged& m) {
+  double sum = 0;
+  for (Index e : m.adj.boundary_edges) {
+    const MeshEdge& edge = m.adj.edges[e];
+    sum += norm(m.merged.mesh.positions[edge.v1] - m.merged.mesh.positions[edge.v0]);
+  }
+  return sum;
+}
+
+// Chine 100 with every defect at 128,000 triangles: the chine's two borders stand 0.07-0.1 m
+// apart from the transom to the stem, a slit that opens onto the outline at both ends, so the
+// outline was the only loop and ran 174 m along it. The measured widths were looked up by
+// vertex number after the snap had renumbered the vertices, so most went to other vertices, and
+// the wider snap counted loops only (one more slit loop is no fewer loops). Now the chine closes:
+// the volume is the clean hull's.
+TEST(MergeGaps, ASlitOpeningOntoTheOutlineIsSnappedAtItsMeasuredWidth) {
+  HullDefects d;
+  d.gap = 0.1;
+  d.overlap = 0.05;
+  d.duplicate_points = true;
+  d.flip_every = 3;
+  const std::vector<Patch> broken = generated(HullKind::kChine, 100, d).patches;
+  const std::vector<Patch> clean = generated(HullKind::kChine, 100).patches;
+  const Merged m = merge_of(broken, edge_length_for_triangles(broken, 128000));
+  const Merged ref = merge_of(clean, edge_length_for_triangles(clean, 128000));
+  expect_clean_half_hull(m, "chine, 100 patches, every defect, 128,000 triangles");
+  EXPECT_GT(m.merged.report.gap_vertices_widened, 0u);
+  EXPECT_NEAR(m.merged.report.enclosed_volume / ref.merged.report.enclosed_volume, 1.0, 5e-3);
+  EXPECT_NEAR(boundary_length(m) / boundary_length(ref), 1.0, 5e-3);
+}
+
+// Full round-bilge 24 with 0.1 m gaps and 5% overlaps: the halves stand 0.1 m apart at the stem,
+// a slit 2.6 m high bent like a C (its fan from the centroid measured 0.43 m wide, so it was not
+// zipped; the zipper's own faces measure 0.1 m), and at the transom the gap opens onto the deck
+// edge, a notch 0.1 m wide and 0.2 m deep. Both close; the boundary is the deck edge alone.
+TEST(MergeGaps, BentSlitAndNotchAtTheDeckOfAFullHullClose) {
+  HullDefects d;
+  d.gap = 0.1;
+  d.overlap = 0.05;
+  HullSpec spec;
+  spec.kind = HullKind::kRoundBilge;
+  spec.patches = 24;
+  spec.full_hull = true;
+  spec.defects = d;
+  const Merged m = merge_of(generate_hull(spec).patches);
+  spec.defects = {};
+  const Merged ref = merge_of(generate_hull(spec).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  EXPECT_GE(m.merged.report.gaps_bridged, 2u);
+  EXPECT_NEAR(boundary_length(m) / boundary_length(ref), 1.0, 5e-3);  // 227 m before, 219 m
+}
+
+// A clean full Wigley of 300 patches at 128,000 triangles: at the bow the deck edge turns back
+// sharply between two patches, and a face across that corner would agree with the sides it
+// joins within 90 degrees; it would be a lid on the deck, not a gap, and it stays open.
+TEST(MergeGaps, TheSharpBowOfACleanFullHullIsNoNotch) {
+  HullSpec spec;
+  spec.kind = HullKind::kWigley;
+  spec.patches = 300;
+  spec.full_hull = true;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 128000));
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  EXPECT_EQ(m.merged.report.gaps_bridged, 0u);
+}
+
+}  // namespace
+}  // namespace hm::test
