@@ -4,7 +4,10 @@
 // three faces, and the retries with a smaller tolerance do not undo it, since the two faces
 // cover each other whatever the snap does. Of each such pair the remnant goes: the face with
 // more boundary edges (it lies at the border of the overlap), then the higher-numbered patch's
-// (the overlap rule: the lowest-numbered patch keeps what two cover).
+// (the overlap rule: the lowest-numbered patch keeps what two cover). The same holds on an edge
+// whose two faces run along it the same way (drop_inconsistent_remnants), where it is the
+// orientation, not the face count, that the remnant spoils; there a face turned inside out
+// against all its neighbours goes too.
 //
 // collect (faces on each edge with three faces or more) -> score (their directions away from the
 // edge, their boundary edges) -> select (one face of each pair folded onto each other) -> apply
