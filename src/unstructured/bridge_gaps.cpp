@@ -5,11 +5,11 @@
 // next diagonals (the classic zipper between two polylines).
 //
 // collect (closed loops along two or more patches, cut into simple cycles where they pass a
-// vertex twice) -> score (mean width, twice
-// the area over the perimeter, within the widest gap) -> select (the two ends: the vertex
-// farthest from the centroid and the vertex farthest from it) -> apply (zip, refusing a diagonal
-// that is an edge already or longer than kLongestDiagonal widths) -> the faces run against the
-// loop, so the winding stays consistent.
+// vertex twice) -> score (mean width, twice the area over the perimeter, within the widest gap)
+// -> select (the two ends: the vertex farthest from the centroid and the vertex farthest from
+// it) -> apply (zip, refusing a diagonal that is an edge already or longer than kLongestDiagonal
+// widths) -> the faces run against the loop, so the winding stays consistent. A cycle that is
+// not zipped may hold notches, gaps that open onto it (close_notch), zipped from their apex.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

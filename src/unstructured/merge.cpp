@@ -180,9 +180,10 @@ void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& befor
   EdgeAdjacency adj_again;
   const merge::SnapStats sa = close_seams(patches, before_snap, again, border, options, length,
                                           std::move(scale), ra, adj_again);
-  // Fewer loops; or as many but a border shorter by kShorterBorder, where the gap opened onto
-  // the hull's outline and so was no loop of its own (the chine of chine 100 with every defect
-  // at 128,000 triangles: 0.07-0.1 m apart from the transom to the stem, 174 m of border).
+  // Fewer loops, or a border shorter by kShorterBorder whatever the loop count: a gap that
+  // opened onto the hull's outline was no loop of its own, and closing it can leave small holes
+  // for the zipper (the chine of chine 100 with every defect at 128,000 triangles, 0.07-0.1 m
+  // apart from the transom to the stem: 1 loop and 397 m of border -> 7 loops and 220 m).
   const auto border_length = [](const merge::Work& m, const EdgeAdjacency& a) {
     double sum = 0;
     for (Index e : a.boundary_edges) {
@@ -204,9 +205,8 @@ void widen_to_open_gaps(std::span<const Patch> patches, const merge::Work& befor
 // Edges with three faces that the retries left, where a face of one patch lies on another's
 // across the edge (drop_folded_faces): the remnant goes, and the small hole it leaves, if any, is
 // closed. Where there is none, edges both faces traverse the same way are treated alike
-// (drop_inconsistent_remnants). Only a merge
-// that would otherwise fail, or keep an inconsistent edge, runs it, so every other comes out as
-// before.
+// (drop_inconsistent_remnants). Only a merge that would otherwise fail, or keep an inconsistent
+// edge, runs it, so every other comes out as before.
 void drop_folds(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& options, double length,
                 MergeReport& r) {
   if (adj.nonmanifold_edges.empty() && adj.inconsistent_edges.empty()) return;

@@ -71,7 +71,7 @@ SnapStats snap_borders(Work& w, const Border& border, const MergeOptions& option
 // face runs along two of its sides (a remnant folded over the patch below) is closed by that
 // face's going and the quad's other half taking its place. Both leave work for drop_degenerate.
 struct HoleStats {
-  std::size_t filled = 0;           // holes closed, the next among them
+  std::size_t filled = 0;           // holes closed, these among them
   std::size_t left_degenerate = 0;  // closed by a collapse or a remnant's going
 };
 HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,

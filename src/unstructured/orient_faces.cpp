@@ -158,7 +158,8 @@ std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w,
       const auto [rp, tp] = find(l.p);
       const auto [rq, tq] = find(l.q);
       if (rp == rq) continue;  // decided by stronger links
-      // The lower-numbered root stays a root: the result does not depend on the sort's ties.
+      // The lower-numbered root stays a root. Links of equal weight keep their (p, q) order, so
+      // the result is fixed whatever the thread count.
       const PatchId hi = std::max(rp, rq), lo = std::min(rp, rq);
       parent[hi] = lo;
       parity[hi] = std::uint8_t(tp ^ tq ^ std::uint8_t(l.disagrees));
