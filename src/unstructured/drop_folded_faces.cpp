@@ -46,6 +46,14 @@ Vec3d away_from_edge(const SurfaceMesh& m, const Face& t, Index u, Index v) {
   return n > 0 ? across / n : Vec3d{};
 }
 
+// Of faces a and b lying on each other, the remnant: the one with more boundary edges (open_a,
+// open_b), then the higher patch's, then the later face.
+Index remnant_of(const SurfaceMesh& m, Index a, int open_a, Index b, int open_b) {
+  return std::make_tuple(open_a, m.face_patch[a], a) > std::make_tuple(open_b, m.face_patch[b], b)
+             ? a
+             : b;
+}
+
 }  // namespace
 
 FoldStats drop_folded_faces(Work& w, const EdgeAdjacency& adj) {
@@ -87,10 +95,7 @@ FoldStats drop_folded_faces(Work& w, const EdgeAdjacency& adj) {
         if (!keep[a] || !keep[b] || m.face_patch[a] == m.face_patch[b]) continue;
         if (!(dot(away[i], away[j]) >= kFoldCos)) continue;
         // The remnant: more boundary edges, then the higher patch, then the later face.
-        const auto rank = [&](Index f) {
-          return std::make_tuple(open_edges[f], m.face_patch[f], f);
-        };
-        const Index drop = rank(a) > rank(b) ? a : b;
+        const Index drop = remnant_of(m, a, open_edges[a], b, open_edges[b]);
         keep[drop] = 0;
         --left;
         ++stats.faces;
@@ -135,10 +140,9 @@ FoldStats drop_inconsistent_remnants(Work& w, const EdgeAdjacency& adj) {
     const Vec3d away_a = away_from_edge(m, m.faces[a], edge.v0, edge.v1);
     const Vec3d away_b = away_from_edge(m, m.faces[b], edge.v0, edge.v1);
     if (m.face_patch[a] != m.face_patch[b] && dot(away_a, away_b) >= kFoldCos) {
-      const auto rank = [&](Index f) { return std::make_tuple(open_edges(f), m.face_patch[f], f); };
-      drop = rank(a) > rank(b) ? a : b;
-    } else if (inverted(a) != inverted(b)) {
-      drop = inverted(a) ? a : b;
+      drop = remnant_of(m, a, open_edges(a), b, open_edges(b));
+    } else if (const bool ia = inverted(a); ia != inverted(b)) {
+      drop = ia ? a : b;
     }
     if (drop == kInvalid) continue;
     // apply
