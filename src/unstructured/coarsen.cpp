@@ -378,6 +378,7 @@ CoarsenedMesh coarsen(std::span<const Patch> patches, const SurfaceMesh& fine,
                      " m); tessellate finer or allow more deviation");
   }
   s.bound = kWitnessShare * (report.max_deviation - chord);
+  s.sample_bound = report.max_deviation - chord;
   s.cos_normal_change = std::cos(options.max_normal_change_deg * std::numbers::pi / 180);
   s.weights = {options.weights.shape, options.weights.area_ratio, options.weights.curvature,
                options.weights.sources};

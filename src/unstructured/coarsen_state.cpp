@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -28,6 +29,67 @@ void build_lines(const FeatureSet& features, State& s) {
   };
   for (const FeatureLine& l : features.knuckles) add(l);
   for (const BoundaryRun& b : features.boundaries) add(b);
+}
+
+// Squared distance from p to the fine triangles around fine vertex w.
+double fan_distance2(const State& s, const Vec3d& p, Index w) {
+  double best = std::numeric_limits<double>::infinity();
+  for (Index k = s.fine_vf_begin[w]; k < s.fine_vf_begin[w + 1]; ++k) {
+    const auto& t = s.fine_faces[s.fine_vf[k]];
+    best = std::min(best, kernel::point_triangle_distance2(p, s.fine_positions[t[0]],
+                                                           s.fine_positions[t[1]],
+                                                           s.fine_positions[t[2]]));
+  }
+  return best;
+}
+
+// The witnesses are fine vertices, so they bound the distance from the surface to the panels
+// at the fine vertices only. Over a curved hull the panel strays furthest at its centre, between
+// witnesses, and the sparser the fine mesh the more it can hide there. So a new panel whose
+// witnesses reach kSampleFrom of the bound has its centroid and edge midpoints measured against
+// the fine mesh: each sample against the fine triangles around the nearest of the panel's
+// witnesses and corners (the two nearest when the first fan is too far). That distance is exact
+// or too large, never too small, so the report's samples (the same points, against the NURBS,
+// which the fine mesh follows to its chord error) stay inside the bound.
+constexpr double kSampleFrom = 0.5;
+
+bool new_panels_near_surface(const State& s, std::span<const Index> from,
+                             std::span<const Index> targets,
+                             std::span<const std::pair<Index, Index>> moves) {
+  const double from2 = kSampleFrom * kSampleFrom * s.bound * s.bound;
+  const double bound2 = s.sample_bound * s.sample_bound;
+  thread_local std::vector<Index> near;
+  for (Index f : targets) {
+    if (std::find(from.begin(), from.end(), f) == from.end()) continue;  // unchanged panel
+    const auto& t = s.faces[f];
+    const Vec3d &a = s.position[t[0]], &b = s.position[t[1]], &c = s.position[t[2]];
+    near.clear();
+    double worst2 = 0;
+    for (const auto& [w, to] : moves) {
+      if (to != f) continue;
+      near.push_back(w);
+      worst2 = std::max(worst2, kernel::point_triangle_distance2(s.fine_positions[w], a, b, c));
+    }
+    if (worst2 <= from2) continue;
+    for (Index v : t) near.push_back(s.source[v]);
+    const Vec3d samples[4] = {(a + b + c) / 3.0, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)};
+    for (const Vec3d& p : samples) {
+      Index n1 = kInvalid, n2 = kInvalid;
+      double d1 = std::numeric_limits<double>::infinity(), d2 = d1;
+      for (Index w : near) {
+        const double d = squared_norm(s.fine_positions[w] - p);
+        if (d < d1 || (d == d1 && w < n1)) {
+          n2 = n1, d2 = d1;
+          n1 = w, d1 = d;
+        } else if (d < d2 || (d == d2 && w < n2)) {
+          n2 = w, d2 = d;
+        }
+      }
+      if (fan_distance2(s, p, n1) <= bound2) continue;
+      if (n2 == kInvalid || n2 == n1 || fan_distance2(s, p, n2) > bound2) return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -79,6 +141,17 @@ void build_state(std::span<const Patch> patches, const SurfaceMesh& fine,
   for (std::size_t v = 0; v < nv; ++v) s.vertex_faces[v].reserve(count[v] + 2);
   for (std::size_t f = 0; f < nf; ++f) {
     for (int c = 0; c < 3; ++c) s.vertex_faces[s.faces[f][c]].push_back(static_cast<Index>(f));
+  }
+  // The fine mesh stays as it is for the samples' distances: count -> scan -> scatter.
+  s.fine_faces = s.faces;
+  s.fine_vf_begin.assign(nv + 1, 0);
+  for (std::size_t v = 0; v < nv; ++v) s.fine_vf_begin[v + 1] = s.fine_vf_begin[v] + count[v];
+  s.fine_vf.resize(s.fine_vf_begin[nv]);
+  {
+    std::vector<Index> next(s.fine_vf_begin.begin(), s.fine_vf_begin.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f) {
+      for (Index c : s.fine_faces[f]) s.fine_vf[next[c]++] = static_cast<Index>(f);
+    }
   }
   s.rest_normal.assign(nv, Vec3d{});
   parallel_for(0, nv, [&](std::size_t v) {
@@ -209,6 +282,7 @@ bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
       if (!place(w, first)) return false;
     }
   }
+  if (!new_panels_near_surface(s, from, targets, moves)) return false;
   for (Index f : from) s.face_witness[f] = kInvalid;
   // Pushing to the list heads in gathering order: the lists come out in a fixed order.
   for (const auto& [w, f] : moves) {

@@ -81,6 +81,13 @@ struct State {
   SizeField field;
   kernel::CollapseWeights weights;
   double bound = 0;  // m: witnesses must stay this close to their panel
+  // m: a panel's centroid and edge midpoints must stay this close to the fine mesh (checked
+  // where a panel's witnesses come near `bound`; see reassign_witnesses).
+  double sample_bound = 0;
+  // The fine triangles (corner indices) and, per fine vertex, the fine triangles around it
+  // (CSR: fine_vf[fine_vf_begin[v] .. fine_vf_begin[v + 1]]), for the samples' distances.
+  std::vector<std::array<Index, 3>> fine_faces;
+  std::vector<Index> fine_vf_begin, fine_vf;
   double cos_normal_change = 0;
   std::vector<double> cfactor;  // per vertex, field.curvature_factor(curvature)
   // Per vertex: the size gate's edge h0 c s, graded so that it grows by at most kGrading per
@@ -152,8 +159,10 @@ void collapse_region(const State& s, Index v, Index t, std::span<Index> out);
 
 // Witnesses of the given faces plus `extra` (a fine vertex no longer held by a mesh vertex, or
 // kInvalid; ignored when it is a witness already), assigned to the
-// nearest of `targets` (faces with final corners). False when one lies farther than the bound;
-// nothing is written then. On success the lists of `from` are emptied and `targets` receive
+// nearest of `targets` (faces with final corners). False when one lies farther than the bound,
+// or when a new panel (a target that is also in `from`) whose witnesses come near the bound has
+// its centroid or an edge midpoint farther than sample_bound from the fine mesh; nothing is
+// written then. On success the lists of `from` are emptied and `targets` receive
 // them; the largest distance goes to `deviation`.
 bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
                         std::span<const Index> targets, double& deviation);
