@@ -43,7 +43,7 @@ namespace {
 // Fine triangles per panel when the user does not size the fine mesh: enough for the collapses
 // to choose from, bounded both ways. Measured on the six shared hulls at 1,000, 4,000 and 16,000
 // panels, 6 (at least 24,000) gives the share rules of 8 (at least 40,000) within 0.5 points at
-// 4,000 and 16,000 panels, in 0.6-0.75 of the coarsening's time. The deviation bound holds
+// 4,000 and 16,000 panels, in 0.5-0.76 of the coarsening's time. The deviation bound holds
 // however sparse the fine vertices: the panels' own samples are checked against the fine mesh
 // where their witnesses come near it (coarsen_state.cpp).
 constexpr std::size_t kFinePerPanel = 6;

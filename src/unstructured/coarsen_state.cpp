@@ -36,9 +36,9 @@ double fan_distance2(const State& s, const Vec3d& p, Index w) {
   double best = std::numeric_limits<double>::infinity();
   for (Index k = s.fine_vf_begin[w]; k < s.fine_vf_begin[w + 1]; ++k) {
     const auto& t = s.fine_faces[s.fine_vf[k]];
-    best = std::min(best, kernel::point_triangle_distance2(p, s.fine_positions[t[0]],
-                                                           s.fine_positions[t[1]],
-                                                           s.fine_positions[t[2]]));
+    best = std::min(
+        best, kernel::point_triangle_distance2(p, s.fine_positions[t[0]], s.fine_positions[t[1]],
+                                               s.fine_positions[t[2]]));
   }
   return best;
 }

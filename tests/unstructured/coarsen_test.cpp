@@ -270,7 +270,7 @@ TEST(Coarsen, TighterDeviationBoundKeepsMorePanelsOnCurves) {
 // A sparse fine mesh (about 6,000 triangles) and a bound the panels press on: the
 // witnesses (fine vertices) sit away from the panels' centres, where a panel over a curved hull
 // strays furthest. The samples' own check keeps the centres and edge midpoints inside the bound
-// (without it: 0.0515 m against the 0.05 m bound, at x = 61 m on the bilge).
+// (without it: 0.0515 m against the 0.05 m bound, at x = 61 m).
 TEST(Coarsen, PanelCentresKeepTheBoundWhereTheFineVerticesAreSparse) {
   const Fine f = generated(HullKind::kWigley, 4, 6'000);
   CoarsenOptions o;
