@@ -162,10 +162,48 @@ ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const Patc
     const PatchCandidate& c = near.items[i];
     if (!take(c)) continue;
     const NurbsSurface& surface = m.patches[c.patch].surface;
-    const SurfaceProjection proj = hm::closest_point(surface, q, c.uv.x, c.uv.y);
-    const Vec2d uv = polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});
-    const Vec3d point = evaluate(surface, uv.x, uv.y);
-    const double d = norm(q - point);
+    auto refine_from = [&](Vec2d start, Vec2d& uv, Vec3d& point) {
+      const SurfaceProjection proj = hm::closest_point(surface, q, start.x, start.y);
+      uv = polish_closest(surface, m.domains[c.patch], q, {proj.u, proj.v});
+      point = evaluate(surface, uv.x, uv.y);
+      return norm(q - point);
+    };
+    Vec2d uv;
+    Vec3d point;
+    double d = refine_from(c.uv, uv, point);
+    // The triangle lies within the chord error of its NURBS, so the NURBS point is at most that
+    // much farther than the triangle. Farther means Newton stopped where the surface folds at a
+    // knuckle inside the patch (a repeated knot): a triangle across it takes corner (u, v) from
+    // the face beyond, and a face that barely moves with u (a transom that narrows to the keel)
+    // looks converged. Sample the triangle's (u, v) box and its surroundings instead, and start
+    // again from the nearest sample.
+    if (d > c.distance + 2 * m.max_deviation + 1e-9 * m.length) {
+      const Vec2d corner[3] = {m.uv_at(c.triangle, 0, 0), m.uv_at(c.triangle, 1, 0),
+                               m.uv_at(c.triangle, 0, 1)};
+      Vec2d lo = corner[0], hi = corner[0];
+      for (const Vec2d& k : corner) {
+        lo = {std::min(lo.x, k.x), std::min(lo.y, k.y)};
+        hi = {std::max(hi.x, k.x), std::max(hi.y, k.y)};
+      }
+      const ParamDomain& dom = m.domains[c.patch];
+      const Vec2d pad = 0.5 * (hi - lo);
+      lo = {std::max(dom.u0, lo.x - pad.x), std::max(dom.v0, lo.y - pad.y)};
+      hi = {std::min(dom.u1, hi.x + pad.x), std::min(dom.v1, hi.y + pad.y)};
+      constexpr int kSamples = 12;
+      Vec2d start = uv;
+      double start_d = d;
+      for (int i = 0; i <= kSamples; ++i) {
+        for (int j = 0; j <= kSamples; ++j) {
+          const Vec2d at{lo.x + (hi.x - lo.x) * i / kSamples, lo.y + (hi.y - lo.y) * j / kSamples};
+          const double d_at = norm(q - evaluate(surface, at.x, at.y));
+          if (d_at < start_d) start_d = d_at, start = at;
+        }
+      }
+      Vec2d uv_s;
+      Vec3d point_s;
+      const double d_s = refine_from(start, uv_s, point_s);
+      if (d_s < d) d = d_s, uv = uv_s, point = point_s;
+    }
     if (!(d < best.distance)) continue;
     best.patch = c.patch;
     best.face = m.tri_face[c.triangle];
