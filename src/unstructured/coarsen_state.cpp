@@ -294,6 +294,32 @@ bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
   return true;
 }
 
+bool back_to_back(const State& s, const std::array<Index, 3>& a, const std::array<Index, 3>& b) {
+  constexpr double kCloseCentre = 0.05;
+  auto twice_area_normal = [&](const std::array<Index, 3>& t) {
+    return cross(s.position[t[1]] - s.position[t[0]], s.position[t[2]] - s.position[t[0]]);
+  };
+  const Vec3d na = twice_area_normal(a), nb = twice_area_normal(b);
+  if (dot(na, nb) >= 0) return false;
+  const Vec3d ca = (s.position[a[0]] + s.position[a[1]] + s.position[a[2]]) / 3.0;
+  const Vec3d cb = (s.position[b[0]] + s.position[b[1]] + s.position[b[2]]) / 3.0;
+  // |ca - cb| < k sqrt(area), squared, with area = |n| / 2.
+  return squared_norm(ca - cb) < kCloseCentre * kCloseCentre * 0.5 * std::min(norm(na), norm(nb));
+}
+
+bool back_to_back_across(const State& s, const std::array<Index, 3>& corners,
+                         std::span<const Index> skip) {
+  for (int e = 0; e < 3; ++e) {
+    const Index p = corners[e], q = corners[(e + 1) % 3];
+    for (Index g : s.vertex_faces[p]) {
+      if (std::find(skip.begin(), skip.end(), g) != skip.end()) continue;
+      const auto& tg = s.faces[g];
+      if (has_corner(tg, q) && back_to_back(s, corners, tg)) return true;
+    }
+  }
+  return false;
+}
+
 Index line_index(const State& s, Index v, Index w, bool before) {
   const LineSpot sp = s.spot[v];
   if (s.kind[w] == Kind::kOnLine) return s.spot[w].line == sp.line ? s.spot[w].k : kInvalid;

@@ -167,6 +167,17 @@ void collapse_region(const State& s, Index v, Index t, std::span<Index> out);
 bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
                         std::span<const Index> targets, double& deviation);
 
+// Two triangles (corner triples) lying back to back: facing opposite ways, with centres closer
+// than the panel codes' close-centre share (QualityOptions::close_centre_fraction, 0.05) of the
+// square root of the smaller one's area. Such pairs form where the hull's two halves are
+// tangent, as a full Wigley's are where its stem meets its keel: a panel whose corners all lie on
+// the stem and the keel lies in the centre plane on both sides.
+bool back_to_back(const State& s, const std::array<Index, 3>& a, const std::array<Index, 3>& b);
+// True when triangle `corners` lies back to back with a live face across one of its edges, other
+// than the faces in `skip`; the faces are found in the corners' current lists.
+bool back_to_back_across(const State& s, const std::array<Index, 3>& corners,
+                         std::span<const Index> skip);
+
 // The index on v's fine line of w, v's line neighbour before (or after) it; kInvalid when w is
 // not found on that line. v must be on a line.
 Index line_index(const State& s, Index v, Index w, bool before);

@@ -4,6 +4,7 @@
 // on a feature line move along the fine line to halfway (by arc length) between their line
 // neighbours, landing on a fine vertex so that they stay exactly on the knuckle or boundary.
 // Every move is checked like a collapse: no fold, no worse panel, witnesses within the bound.
+// Before and after the passes, panels lying back to back with a neighbour are parted by flips.
 #include <algorithm>
 #include <cmath>
 
@@ -20,6 +21,10 @@ namespace {
 constexpr double kFlipGain = 0.02;
 // The two panels of a flipped edge may stand at most this far from coplanar (cos 20 degrees).
 constexpr double kFlipCoplanarCos = 0.94;
+// A flip that parts panels lying back to back may leave a panel this bad, when none was worse
+// before: a little below the collapses' sliver shape (0.25), since a pair back to back breaks a
+// panel code's rule and one poor panel only lowers a share.
+constexpr double kApartShape = 0.2;
 
 Vec3d tri_cross(const State& s, const std::array<Index, 3>& t) {
   return cross(s.position[t[1]] - s.position[t[0]], s.position[t[2]] - s.position[t[0]]);
@@ -41,8 +46,11 @@ bool adjacent(const State& s, Index a, Index b) {
   return false;
 }
 
-// Tries to flip edge a -> b of face f1. Returns true when flipped.
-bool try_flip(State& s, Index f1, Index a, Index b, double& deviation) {
+// Tries to flip edge a -> b of face f1. Returns true when flipped. Neither new panel may lie back
+// to back with a neighbour. Normally a flip must raise the worse panel's shape by kFlipGain;
+// `apart` (f1 lies back to back with a neighbour) asks only that the worse shape stay at least
+// the old one's or kApartShape.
+bool try_flip(State& s, Index f1, Index a, Index b, double& deviation, bool apart = false) {
   if (is_feature_edge(s, a, b)) return false;
   Index f2 = kInvalid;
   for (Index g : s.vertex_faces[b]) {
@@ -60,7 +68,10 @@ bool try_flip(State& s, Index f1, Index a, Index b, double& deviation) {
   const std::array<Index, 3> old1 = s.faces[f1], old2 = s.faces[f2];
   const std::array<Index, 3> new1{a, d, c}, new2{d, b, c};
   const double old_min = std::min(tri_shape(s, old1), tri_shape(s, old2));
-  if (std::min(tri_shape(s, new1), tri_shape(s, new2)) < old_min + kFlipGain) return false;
+  const double new_min = std::min(tri_shape(s, new1), tri_shape(s, new2));
+  if (new_min < (apart ? std::min(old_min, kApartShape) : old_min + kFlipGain)) return false;
+  const Index pair[2] = {f1, f2};
+  if (back_to_back_across(s, new1, pair) || back_to_back_across(s, new2, pair)) return false;
   const Vec3d n_old = tri_cross(s, old1) + tri_cross(s, old2);
   const Vec3d m1 = tri_cross(s, new1), m2 = tri_cross(s, new2);
   const double l1 = norm(m1), l2 = norm(m2), lo = norm(n_old);
@@ -99,6 +110,30 @@ std::size_t flip_pass(State& s) {
         ++flips;
         s.max_witness_distance = std::max(s.max_witness_distance, deviation);
         break;  // the face changed; its other edges come again next pass
+      }
+    }
+  }
+  return flips;
+}
+
+// Panels lying back to back with a neighbour (see back_to_back): the collapses make none, but
+// the fine mesh brings them where the hull's halves are tangent (a fine panel at a full Wigley's
+// stem foot with its corners on the stem and the keel), and the collapses cannot take them away
+// without making another. Flipping one of their free edges gives each side a corner off the
+// centre plane, where the halves part.
+std::size_t flip_apart(State& s) {
+  std::size_t flips = 0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (!s.face_alive[f]) continue;
+    const Index self[1] = {static_cast<Index>(f)};
+    if (!back_to_back_across(s, s.faces[f], self)) continue;
+    for (int e = 0; e < 3; ++e) {
+      const auto t = s.faces[f];
+      double deviation = 0;
+      if (try_flip(s, static_cast<Index>(f), t[e], t[(e + 1) % 3], deviation, true)) {
+        ++flips;
+        s.max_witness_distance = std::max(s.max_witness_distance, deviation);
+        break;
       }
     }
   }
@@ -266,10 +301,14 @@ std::size_t smooth_pass(State& s, std::vector<std::uint8_t>& held) {
 ImproveCounts improve_panels(State& s, int passes) {
   ImproveCounts counts;
   std::vector<std::uint8_t> held(s.position.size(), 0);
+  // Apart first, so that the passes work on parted panels; and last, since a smoothing move is
+  // not checked against the faces beyond its ring (their far corners may move in the same round).
+  counts.flips += flip_apart(s);
   for (int p = 0; p < passes; ++p) {
     counts.flips += flip_pass(s);
     counts.moves += smooth_pass(s, held);
   }
+  counts.flips += flip_apart(s);
   return counts;
 }
 
