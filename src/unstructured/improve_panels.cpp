@@ -122,11 +122,17 @@ std::size_t flip_pass(State& s) {
 // without making another. Flipping one of their free edges gives each side a corner off the
 // centre plane, where the halves part.
 std::size_t flip_apart(State& s) {
+  // Found in parallel (each face writes its own flag), parted serially in face order.
+  std::vector<std::uint8_t> found(s.faces.size(), 0);
+  parallel_for(0, s.faces.size(), [&](std::size_t f) {
+    const Index self[1] = {static_cast<Index>(f)};
+    found[f] = s.face_alive[f] && back_to_back_across(s, s.faces[f], self);
+  });
   std::size_t flips = 0;
   for (std::size_t f = 0; f < s.faces.size(); ++f) {
-    if (!s.face_alive[f]) continue;
+    // A flip of an earlier face may have parted this one already (flips make no new pair).
     const Index self[1] = {static_cast<Index>(f)};
-    if (!back_to_back_across(s, s.faces[f], self)) continue;
+    if (!found[f] || !s.face_alive[f] || !back_to_back_across(s, s.faces[f], self)) continue;
     for (int e = 0; e < 3; ++e) {
       const auto t = s.faces[f];
       double deviation = 0;
