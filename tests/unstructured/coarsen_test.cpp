@@ -16,6 +16,7 @@
 #include "nurbs/generate_hull.h"
 #include "quality/quality_report.h"
 #include "query/hull_query.h"
+#include "support/hull_spec.h"
 #include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/measure_deviation.h"
@@ -290,14 +291,8 @@ TEST(Coarsen, PanelCentresKeepTheBoundWhereTheFineVerticesAreSparse) {
 // seed 1050 failed on such a point under --validate). The merged fine mesh measured as panels must
 // come out within its own chord error.
 TEST(Coarsen, DeviationOfTheFineMeshItselfIsWithinItsChordError) {
-  HullSpec spec;
-  spec.kind = HullKind::kChine;
-  spec.length = 183.907;
-  spec.beam = 16.8072;
-  spec.depth = 9.69961;
-  spec.draft = 7.20277;
-  spec.patches = 2;
-  spec.full_hull = true;
+  const HullSpec spec =
+      test::hull_spec(HullKind::kChine, 183.907, 16.8072, 7.20277, 9.69961, 2, /*full=*/true);
   const Fine f = fine_hull(generate_hull(spec).patches, 24'000);
   const HullQuery q(f.patches, f.merged.mesh);
   const DeviationMeasure dev = measure_deviation(q, f.merged.mesh);
@@ -311,15 +306,11 @@ TEST(Coarsen, DeviationOfTheFineMeshItselfIsWithinItsChordError) {
 // 1e-4 L) from 24,000 fine triangles; without the finish's flips apart, 1027's has 2 such pairs.
 TEST(Coarsen, NoPanelsBackToBackWhereAFullWigleysHalvesAreTangent) {
   for (std::uint64_t seed : {1133u, 1027u}) {
-    HullSpec spec;
-    spec.kind = HullKind::kWigley;
-    spec.full_hull = true;
+    HullSpec spec =
+        seed == 1133
+            ? test::hull_spec(HullKind::kWigley, 151.886, 15.473, 4.22224, 5.36317, 9, true)
+            : test::hull_spec(HullKind::kWigley, 116.467, 19.7171, 5.31376, 7.26129, 5, true);
     spec.defects.seed = seed;
-    spec.length = seed == 1133 ? 151.886 : 116.467;
-    spec.beam = seed == 1133 ? 15.473 : 19.7171;
-    spec.draft = seed == 1133 ? 4.22224 : 5.31376;
-    spec.depth = seed == 1133 ? 5.36317 : 7.26129;
-    spec.patches = seed == 1133 ? 9 : 5;
     spec.defects.gap = spec.length * 1e-4;
     const Fine f = fine_hull(generate_hull(spec).patches, 24'000);
     CoarsenOptions o;
