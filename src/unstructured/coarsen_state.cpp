@@ -143,14 +143,14 @@ void build_state(std::span<const Patch> patches, const SurfaceMesh& fine,
     for (int c = 0; c < 3; ++c) s.vertex_faces[s.faces[f][c]].push_back(static_cast<Index>(f));
   }
   // The fine mesh stays as it is for the samples' distances: count -> scan -> scatter.
-  s.fine_faces = s.faces;
+  s.fine_faces = fine.faces;
   s.fine_vf_begin.assign(nv + 1, 0);
   for (std::size_t v = 0; v < nv; ++v) s.fine_vf_begin[v + 1] = s.fine_vf_begin[v] + count[v];
   s.fine_vf.resize(s.fine_vf_begin[nv]);
   {
     std::vector<Index> next(s.fine_vf_begin.begin(), s.fine_vf_begin.end() - 1);
     for (std::size_t f = 0; f < nf; ++f) {
-      for (Index c : s.fine_faces[f]) s.fine_vf[next[c]++] = static_cast<Index>(f);
+      for (int c = 0; c < 3; ++c) s.fine_vf[next[s.faces[f][c]]++] = static_cast<Index>(f);
     }
   }
   s.rest_normal.assign(nv, Vec3d{});

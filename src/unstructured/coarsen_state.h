@@ -84,9 +84,9 @@ struct State {
   // m: a panel's centroid and edge midpoints must stay this close to the fine mesh (checked
   // where a panel's witnesses come near `bound`; see reassign_witnesses).
   double sample_bound = 0;
-  // The fine triangles (corner indices) and, per fine vertex, the fine triangles around it
-  // (CSR: fine_vf[fine_vf_begin[v] .. fine_vf_begin[v + 1]]), for the samples' distances.
-  std::vector<std::array<Index, 3>> fine_faces;
+  // The fine triangles and, per fine vertex, the fine triangles around it (CSR:
+  // fine_vf[fine_vf_begin[v] .. fine_vf_begin[v + 1]]), for the samples' distances.
+  std::span<const Face> fine_faces;
   std::vector<Index> fine_vf_begin, fine_vf;
   double cos_normal_change = 0;
   std::vector<double> cfactor;  // per vertex, field.curvature_factor(curvature)

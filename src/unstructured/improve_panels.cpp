@@ -116,11 +116,11 @@ std::size_t flip_pass(State& s) {
   return flips;
 }
 
-// Panels lying back to back with a neighbour (see back_to_back): the collapses make none, but
-// the fine mesh brings them where the hull's halves are tangent (a fine panel at a full Wigley's
-// stem foot with its corners on the stem and the keel), and the collapses cannot take them away
-// without making another. Flipping one of their free edges gives each side a corner off the
-// centre plane, where the halves part.
+// Panels lying back to back with a neighbour (see back_to_back) form where the hull's halves are
+// tangent: the fine mesh brings them (a fine panel at a full Wigley's stem foot with its corners
+// on the stem and the keel), and collapses make them, unchecked (a guard that refused such
+// collapses left pairs of panels that share no edge; see the README). Flipping one of their free
+// edges gives each side a corner off the centre plane, where the halves part.
 std::size_t flip_apart(State& s) {
   // Found in parallel (each face writes its own flag), parted serially in face order.
   std::vector<std::uint8_t> found(s.faces.size(), 0);
