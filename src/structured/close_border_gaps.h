@@ -2,6 +2,9 @@
 // does not join straight (the stem between a row ending on the waterline and one ending on the
 // centre plane; an open transom's edge), the panel edge between the two ends cuts a sliver off
 // the hull. The sliver is filled with a fan to the boundary path, resampled at the panel size.
+// Where the path turns the corner of the centre plane and the waterline, on such an edge or on
+// an end cap's (a transom immersed a few hundredths of a panel, whose corner the cap's
+// resampling drops), the two sides of the corner are zipped against each other instead.
 #pragma once
 
 #include <cstdint>

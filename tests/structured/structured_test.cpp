@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "nurbs/generate_hull.h"
 #include "quality/quality_report.h"
 #include "query/hull_query.h"
+#include "support/hull_spec.h"
 #include "support/test_support.h"
 #include "tessellate/tessellate.h"
 #include "unstructured/cut_at_plane.h"
@@ -250,6 +252,34 @@ TEST(Structured, PanelSizesFollowTheUserBoxes) {
     stern += x < 20;
   }
   EXPECT_GT(bow, 3 * stern);
+}
+
+// A transom immersed a few hundredths of a panel (the property test's seeds 1205-1231): the end
+// cap's resampling drops the corner where the centre plane meets the waterline, so the cap's
+// edge along the transom's lower edge cut that corner off and left a hole below the waterline.
+// The border gaps fill it, corner included, at every immersion.
+TEST(Structured, ATransomImmersedAFewHundredthsOfAPanelLeavesNoHole) {
+  const HullSpec spec = test::hull_spec(HullKind::kRoundBilge, 120.21, 24.6324, 6.6118, 9.43427, 6);
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  // The transom's lowest point: the lowest vertex in its plane, the hull's aft end.
+  const auto dry = test::prepare_surface(patches, std::nan(""), 0.6);
+  double x_aft = std::numeric_limits<double>::infinity();
+  for (const Vec3d& p : dry->merged.mesh.positions) x_aft = std::min(x_aft, p.x);
+  double z_transom = std::numeric_limits<double>::infinity();
+  for (const Vec3d& p : dry->merged.mesh.positions)
+    if (p.x <= x_aft + 1e-9) z_transom = std::min(z_transom, p.z);
+  ASSERT_GT(z_transom, 1.0) << "the hull must have a transom above its keel";
+  for (const double depth : {0.02, 0.05, 0.08, 0.15}) {
+    const double waterline = z_transom + depth;
+    const auto w = test::prepare_surface(patches, waterline, 0.6);
+    StructuredOptions o;
+    o.target_panels = 500;
+    const StructuredMesh m = mesh(*w, o);
+    const QualityReport q = quality(m, waterline);
+    EXPECT_EQ(q.topology.free_edges_below, 0u) << "transom immersed " << depth << " m";
+    EXPECT_EQ(q.zero_area, 0u) << depth;
+    EXPECT_TRUE(q.topology.orientation_consistent) << depth;
+  }
 }
 
 }  // namespace
