@@ -295,6 +295,13 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
   for (std::size_t j = 0; j < cut.size(); ++j) cut[j] = Plane{{plan.x[j], 0, 0}, {1, 0, 0}};
   const std::vector<Section> secs = query.sections(cut);
   const double tol = 1e-3 * query.length_scale();
+  // A curve's end lies on the surface's boundary, but its refinement onto the NURBS can carry it
+  // off: where the waterplane cut moved a fine chine vertex up onto the waterline, the end
+  // refines back down onto the chine (property seed 1338: 0.17 m, a ninth of a panel, past
+  // 1e-3 L), and the strip above the chine would be left open. Ends are snapped from a quarter
+  // panel away.
+  const double end_tol =
+      std::max(tol, 0.25 * std::min({metric.size.x, metric.size.y, metric.size.z}));
   const std::vector<Index> group = knuckle_groups(surface, features);
   std::vector<std::array<Index, 2>> boundary;
   for (Index e : adj.boundary_edges) boundary.push_back({adj.edges[e].v0, adj.edges[e].v1});
@@ -307,8 +314,8 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       if (pl.points.size() < 2) continue;
       SectionPolyline ends = pl;
       if (!pl.closed) {
-        snap_end(ends.points.front().point, row.x, surface, boundary, tol);
-        snap_end(ends.points.back().point, row.x, surface, boundary, tol);
+        snap_end(ends.points.front().point, row.x, surface, boundary, end_tol);
+        snap_end(ends.points.back().point, row.x, surface, boundary, end_tol);
       }
       RowCurve c = make_curve(ends, metric);
       // Slivers of a section (a grazed patch corner) are not rows.

@@ -1,0 +1,64 @@
+// Replayed property-test cases where the structured mesher left a hole below the waterline: each
+// hull, meshed at its floating draft, must pass --validate (no zero-area panel among its checks)
+// and come out closed below the waterline.
+//   - seed 1231: a transom immersed 0.08 m (a thirtieth of a panel): the end cap's resampling
+//     dropped the corner of the centre plane and the waterline;
+//   - seed 1295: a full hull's fine stem, where the border gap's fan from the last row went
+//     through a point on the stem below that corner;
+//   - seed 1338: a chine rising out of the water, where the waterplane cut had moved a fine chine
+//     vertex onto the waterline and a row's end refined back down onto the chine, 0.17 m under
+//     the waterline (past 1e-3 L, the end snap's reach before).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_json.h"
+#include "support/test_support.h"
+
+namespace hm {
+namespace {
+
+namespace fs = std::filesystem;
+using test::q;
+using test::run_hullmesh;
+
+struct Replay {
+  const char* name;
+  const char* generate;  // `hullmesh generate` arguments
+  const char* draft;     // m
+  int panels;
+};
+
+TEST(CliStructured, ReplayedHolesBelowTheWaterlineAreClosed) {
+  const Replay cases[] = {
+      {"transom 1231",
+       "round-bilge --length 120.21 --beam 24.6324 --draft 6.6118 --depth 9.43427 --patches 6 "
+       "--seed 1231 --full",
+       "4.457207", 500},
+      {"stem 1295",
+       "round-bilge --length 161.718 --beam 33.2174 --draft 13.8691 --depth 22.122 --patches 15 "
+       "--seed 1295 --full --duplicate-points --flip-every 2",
+       "14.656948", 1200},
+      {"chine 1338",
+       "chine --length 191.628 --beam 34.002 --draft 8.51349 --depth 12.2407 --patches 16 "
+       "--seed 1338 --gap 0.0191628",
+       "5.726245", 1000},
+  };
+  const fs::path dir = test::scratch_dir("cli_structured_holes");
+  for (const Replay& c : cases) {
+    const fs::path igs = dir / "hull.igs", out = dir / "panels.obj";
+    ASSERT_EQ(run_hullmesh(std::string("-q generate ") + c.generate + " -o " + q(igs)).exit_code, 0)
+        << c.name;
+    const auto r = run_hullmesh("-q --validate structured " + q(igs) + " -o " + q(out) +
+                                " --panels " + std::to_string(c.panels) + " --draft " + c.draft);
+    ASSERT_EQ(r.exit_code, 0) << c.name << ": " << r.out;
+    const nlohmann::json record = test::read_json(fs::path(out).replace_extension(".run.json"));
+    ASSERT_TRUE(record.is_object()) << c.name;
+    EXPECT_EQ(record["quality"]["free_edges_below_waterline"], 0) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace hm
