@@ -38,6 +38,53 @@ namespace {
 // How far along N the inner side moves (repair 2).
 constexpr double kExtendSteps[] = {0.15, 0.3};
 
+// Face f's area vector (Newell's formula: twice its area along its normal).
+Vec3d newell(const EditableFaces& m, const Face& f) {
+  Vec3d n{0, 0, 0};
+  const int c = corner_count(f);
+  for (int k = 0; k < c; ++k) {
+    const Vec3d& a = m.position(f[k]);
+    const Vec3d& b = m.position(f[(k + 1) % c]);
+    n += cross(a, b);
+  }
+  return n;
+}
+
+// The centroid of f's corners other than a and b.
+Vec3d off_side(const EditableFaces& m, const Face& f, Index a, Index b) {
+  Vec3d sum{0, 0, 0};
+  int n = 0;
+  for (int k = 0; k < corner_count(f); ++k) {
+    if (f[k] == a || f[k] == b) continue;
+    sum += m.position(f[k]);
+    ++n;
+  }
+  return n > 0 ? sum / static_cast<double>(n) : sum;
+}
+
+// Some side of a face in core has its two faces on one side of it, seen along their mean normal:
+// the surface folds over there.
+bool folds(const EditableFaces& m, const std::set<Index>& core) {
+  for (Index g : core) {
+    if (m.removed(g)) continue;
+    const Face& f = m.face(g);
+    const int c = corner_count(f);
+    for (int k = 0; k < c; ++k) {
+      const Index a = f[k], b = f[(k + 1) % c];
+      const Index h = m.across(g, a, b);
+      if (h == kInvalid) continue;
+      const Vec3d ng = newell(m, f), nh = newell(m, m.face(h));
+      if (norm(ng) == 0 || norm(nh) == 0) continue;
+      const Vec3d n = ng / norm(ng) + nh / norm(nh);
+      const Vec3d pa = m.position(a), ab = m.position(b) - pa;
+      const double s1 = dot(cross(ab, off_side(m, f, a, b) - pa), n);
+      const double s2 = dot(cross(ab, off_side(m, m.face(h), a, b) - pa), n);
+      if (s1 * s2 >= 0) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const NodeSlot> slots,
@@ -124,6 +171,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
       for (Index v : {p.b0, p.b1, p.i0, p.i1})
         for (Index g : m.around(v)) scored.insert(g);
     EditableFaces::Score best = m.score(scored);
+    const bool folded_before = folds(m, scored);
     int best_kind = 0;  // 0: leave it; 1, 2, 3: the repair of that number
     double best_step = 0;
     std::vector<Face> best_split;
@@ -206,7 +254,9 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
         for (Index g : faces_of) m.set_face(g, renamed(m.face(g), i, bf.first));
       }
       EditableFaces::Score s1{std::numeric_limits<std::size_t>::max(), 0};
-      if (m.manifold(scored)) s1 = m.score(scored);
+      // A removal that folds the surface over (a merged node's panels lying across the next
+      // row's, at a flared stem: property seed 1203) would make panels pass through each other.
+      if (m.manifold(scored) && (folded_before || !folds(m, scored))) s1 = m.score(scored);
       for (const auto& [g, h] : was) m.set_face(g, h);
       if (s1.better_than(best)) {
         best = s1;

@@ -1,13 +1,16 @@
-// Replayed property-test cases where the structured mesher left a hole below the waterline: each
-// hull, meshed at its floating draft, must pass --validate (no zero-area panel among its checks)
-// and come out closed below the waterline.
+// Replayed property-test cases where the structured mesher broke a hard panel-code rule: each
+// hull, meshed at its floating draft, must pass --validate (no zero-area panel among its checks),
+// come out closed below the waterline, and break no hard rule (the share rules are issue 6's
+// goals, not asserted here).
 //   - seed 1231: a transom immersed 0.08 m (a thirtieth of a panel): the end cap's resampling
 //     dropped the corner of the centre plane and the waterline;
 //   - seed 1295: a full hull's fine stem, where the border gap's fan from the last row went
 //     through a point on the stem below that corner;
 //   - seed 1338: a chine rising out of the water, where the waterplane cut had moved a fine chine
 //     vertex onto the waterline and a row's end refined back down onto the chine, 0.17 m under
-//     the waterline (past 1e-3 L, the end snap's reach before).
+//     the waterline (past 1e-3 L, the end snap's reach before);
+//   - seed 1203: a flared stem where a border panel's removal merged a node so that its panels
+//     lay across the next row's: 4 pairs of panels passed through each other.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -31,7 +34,13 @@ struct Replay {
   int panels;
 };
 
-TEST(CliStructured, ReplayedHolesBelowTheWaterlineAreClosed) {
+// A failure line of a share rule ("...: 96.7% pass, need 98%") or the warp; every other line is
+// a hard rule.
+bool is_share_rule(const std::string& failure) {
+  return failure.find("% pass, need") != std::string::npos || failure.rfind("max warp", 0) == 0;
+}
+
+TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
   const Replay cases[] = {
       {"transom 1231",
        "round-bilge --length 120.21 --beam 24.6324 --draft 6.6118 --depth 9.43427 --patches 6 "
@@ -45,8 +54,12 @@ TEST(CliStructured, ReplayedHolesBelowTheWaterlineAreClosed) {
        "chine --length 191.628 --beam 34.002 --draft 8.51349 --depth 12.2407 --patches 16 "
        "--seed 1338 --gap 0.0191628",
        "5.726245", 1000},
+      {"flared stem 1203",
+       "round-bilge --length 168.403 --beam 26.0396 --draft 8.71439 --depth 11.0352 --patches 15 "
+       "--seed 1203 --full --duplicate-points --flip-every 3",
+       "5.26369", 1100},
   };
-  const fs::path dir = test::scratch_dir("cli_structured_holes");
+  const fs::path dir = test::scratch_dir("cli_structured_replays");
   for (const Replay& c : cases) {
     const fs::path igs = dir / "hull.igs", out = dir / "panels.obj";
     ASSERT_EQ(run_hullmesh(std::string("-q generate ") + c.generate + " -o " + q(igs)).exit_code, 0)
@@ -57,6 +70,9 @@ TEST(CliStructured, ReplayedHolesBelowTheWaterlineAreClosed) {
     const nlohmann::json record = test::read_json(fs::path(out).replace_extension(".run.json"));
     ASSERT_TRUE(record.is_object()) << c.name;
     EXPECT_EQ(record["quality"]["free_edges_below_waterline"], 0) << c.name;
+    for (const std::string failure : record["quality"]["failures"]) {
+      EXPECT_TRUE(is_share_rule(failure)) << c.name << ": " << failure;
+    }
   }
 }
 
