@@ -203,6 +203,16 @@ ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const Patc
       Vec3d point_s;
       const double d_s = refine_from(start, uv_s, point_s);
       if (d_s < d) d = d_s, uv = uv_s, point = point_s;
+      // And from the triangle's corners, which lie on the NURBS: where one parameter moves the
+      // surface hundreds of times faster on one side of a knuckle than on the other (a keel
+      // running aft from a transom wrapped into the same patch: 450 m of x per unit of u against
+      // a transom a few metres wide), the samples miss the fast side, while a corner on it
+      // starts Newton there (property seed 1535: 0.81 m reported on a keel point).
+      for (const Vec2d& k : corner) {
+        if (d <= c.distance + 2 * m.max_deviation + 1e-9 * m.length) break;
+        const double d_k = refine_from(k, uv_s, point_s);
+        if (d_k < d) d = d_k, uv = uv_s, point = point_s;
+      }
     }
     if (!(d < best.distance)) continue;
     best.patch = c.patch;

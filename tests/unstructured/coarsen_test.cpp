@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "core/error.h"
@@ -298,6 +299,29 @@ TEST(Coarsen, DeviationOfTheFineMeshItselfIsWithinItsChordError) {
   const DeviationMeasure dev = measure_deviation(q, f.merged.mesh);
   EXPECT_LE(dev.max, f.chord_error)
       << "at " << dev.where.x << ", " << dev.where.y << ", " << dev.where.z;
+}
+
+// The same patch's transom and bottom, wrapped into one: along the keel x moves 450 m per unit
+// of u, across the transom a few metres. A merged triangle from the transom's far corner to the
+// keel gave Newton a start on the transom, and the samples of its (u, v) box all fell beside the
+// keel, so the point on the keel 0.8 m from the transom came out 0.8 m off the hull (property
+// seed 1535 failed --validate on it). Points along the keel there must lie on the hull.
+TEST(Coarsen, KeelPointsBesideATransomWrappedIntoThePatchAreOnTheHull) {
+  HullSpec spec = test::hull_spec(HullKind::kChine, 194.434, 43.9488, 13.2013, 21.0994, 3, true);
+  spec.defects.seed = 1535;
+  spec.defects.gap = 0.0194434;
+  spec.defects.overlap = 0.05;
+  spec.defects.flip_every = 4;
+  const Fine f = fine_hull(generate_hull(spec).patches, 24'000);
+  const HullQuery q(f.patches, f.merged.mesh);
+  double z_keel = std::numeric_limits<double>::infinity();
+  for (const Vec3d& p : f.merged.mesh.positions) z_keel = std::min(z_keel, p.z);
+  for (double x : {0.3, 0.806, 1.2, 2.0}) {
+    const ClosestPoint c = q.closest_point({x, 0.0, z_keel});
+    // The halves' keels lie 9.3 mm either side of y = 0 (the gap).
+    EXPECT_LT(c.distance, 0.02) << "x " << x << ": nearest at " << c.point.x << ", " << c.point.y
+                                << ", " << c.point.z;
+  }
 }
 
 // A full Wigley's halves are tangent where its stem meets its keel, so a panel there whose corners
