@@ -26,6 +26,9 @@ namespace {
 
 // Normals of coincident layers agree to this (either orientation: patches may arrive flipped).
 constexpr double kMinNormalCos = 0.866;  // 30 degrees
+// The normal beside a point, either side of a knot line through it: this share of the domain
+// away.
+constexpr double kBeside = 1e-6;
 
 // A cut this close to a corner, as a share of its edge, is no cut: the corner lies on the
 // border of the patches below and moves onto it (the snap closes the rest, as it closes a gap),
@@ -52,20 +55,39 @@ bool edge_cut_less(const EdgeCut& a, const EdgeCut& b) {
   return a.in != b.in ? a.in < b.in : a.out < b.out;
 }
 
+// Whether n agrees (either way) with the normal of the closest point cp, or with the normal just
+// beside it on its patch: on a knuckle inside a patch (a chine at a repeated knot) the normal at
+// cp is one side's, and n, a knuckle vertex's own, may be the other's (property seed 1536: the
+// chine vertices of an overlapping patch were left uncovered, and the faces between them stayed
+// over the patch below).
+bool normal_agrees(std::span<const Patch> patches, const ClosestPoint& cp, const Vec3d& n) {
+  if (std::abs(dot(n, cp.normal)) >= kMinNormalCos) return true;
+  const NurbsSurface& s = patches[cp.patch].surface;
+  const double du = kBeside * (s.u1 - s.u0), dv = kBeside * (s.v1 - s.v0);
+  for (const Vec2d d : {Vec2d{du, 0}, Vec2d{-du, 0}, Vec2d{0, dv}, Vec2d{0, -dv}}) {
+    const double u = std::clamp(cp.uv.x + d.x, s.u0, s.u1);
+    const double v = std::clamp(cp.uv.y + d.y, s.v0, s.v1);
+    if (std::abs(dot(n, normal(s, u, v))) >= kMinNormalCos) return true;
+  }
+  return false;
+}
+
 // The closest point of x within `limit` on the patches first <= q < last whose normal agrees
 // with n (either way), or an invalid point. At a knuckle the nearest of them may be the patch
 // across it, as near as the one x lies on: that one is searched around, twice at most.
-ClosestPoint closest_alike(const HullQuery& q, const Vec3d& x, const Vec3d& n, PatchId first,
-                           PatchId last, double limit, int depth = 2) {
+ClosestPoint closest_alike(const HullQuery& q, std::span<const Patch> patches, const Vec3d& x,
+                           const Vec3d& n, PatchId first, PatchId last, double limit,
+                           int depth = 2) {
   if (first >= last) return {};
   // The triangles stray from the surface by up to the chord tolerance: search them wider than
   // the distance asked of the exact surfaces.
   const ClosestPoint cp = q.closest_point_in_range(x, first, last, 20 * limit);
   if (!cp.valid() || !(cp.distance <= limit)) return {};
-  if (std::abs(dot(n, cp.normal)) >= kMinNormalCos) return cp;
+  if (normal_agrees(patches, cp, n)) return cp;
   if (depth == 0) return {};
-  const ClosestPoint below = closest_alike(q, x, n, first, cp.patch, limit, depth - 1);
-  const ClosestPoint above = closest_alike(q, x, n, cp.patch + 1, last, limit, depth - 1);
+  const ClosestPoint below = closest_alike(q, patches, x, n, first, cp.patch, limit, depth - 1);
+  const ClosestPoint above =
+      closest_alike(q, patches, x, n, cp.patch + 1, last, limit, depth - 1);
   if (!below.valid()) return above;
   if (!above.valid()) return below;
   return above.distance < below.distance ? above : below;
@@ -79,7 +101,7 @@ PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const
   if (own == 0) return kInvalid;
   const Vec2d uv = m.vertex_uv[v];
   const Vec3d n = normal(patches[own].surface, uv.x, uv.y);
-  return closest_alike(q, m.positions[v], n, 0, own, distance).patch;
+  return closest_alike(q, patches, m.positions[v], n, 0, own, distance).patch;
 }
 
 // Border vertices that may lie inside another patch: no other patch's border edge near them, or

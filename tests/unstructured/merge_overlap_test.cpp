@@ -1,0 +1,33 @@
+// Overlapping patches that meet at a knuckle inside them: the overlap is cut away there too.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "query/find_self_intersections.h"
+#include "support/hull_spec.h"
+#include "unstructured/merge_support.h"
+
+namespace hm::test {
+namespace {
+
+// A full chine hull of 5 patches overlapping by 5%, each patch wrapping bottom and side, so that
+// the chine is a repeated knot inside it (property seed 1536). An overlapping patch's chine
+// vertices lie on the patch below, but its normal there is the other side's: the vertices were
+// left uncovered, the faces between them stayed over the patch below, and the merged surface
+// passed through itself 9 times (the unstructured mesh once). The merged surface must pass
+// through itself nowhere.
+TEST(MergeOverlap, OverlapsAcrossAChineInsideThePatchesAreCutAway) {
+  HullSpec spec = hull_spec(HullKind::kChine, 120.364, 12.9656, 3.5368, 5.48754, 5, true);
+  spec.defects.seed = 1536;
+  spec.defects.overlap = 0.05;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 24'000));
+  EXPECT_GT(m.merged.report.overlap_area_removed, 0.0);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);
+  EXPECT_EQ(x.count, 0u) << "first near " << (x.first.empty() ? Vec3d{} : x.first[0].where).x;
+}
+
+}  // namespace
+}  // namespace hm::test
