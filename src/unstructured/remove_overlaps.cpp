@@ -86,8 +86,7 @@ ClosestPoint closest_alike(const HullQuery& q, std::span<const Patch> patches, c
   if (normal_agrees(patches, cp, n)) return cp;
   if (depth == 0) return {};
   const ClosestPoint below = closest_alike(q, patches, x, n, first, cp.patch, limit, depth - 1);
-  const ClosestPoint above =
-      closest_alike(q, patches, x, n, cp.patch + 1, last, limit, depth - 1);
+  const ClosestPoint above = closest_alike(q, patches, x, n, cp.patch + 1, last, limit, depth - 1);
   if (!below.valid()) return above;
   if (!above.valid()) return below;
   return above.distance < below.distance ? above : below;
