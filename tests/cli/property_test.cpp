@@ -7,6 +7,7 @@
 //
 //   HM_PROPERTY_SEED=S    replay the one case with seed S
 //   HM_PROPERTY_CASES=N   run N cases (default 8)
+//   HM_PROPERTY_FIRST=S   from seed S (default 1000)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -148,8 +149,10 @@ TEST(Property, RandomHullsWithDefectsMeshSoundlyWithBothMeshers) {
   }
   const char* n = std::getenv("HM_PROPERTY_CASES");
   const int cases = n ? std::atoi(n) : 8;
+  const char* f = std::getenv("HM_PROPERTY_FIRST");
+  const std::uint64_t first = f ? std::strtoull(f, nullptr, 10) : 1000;
   for (int k = 0; k < cases; ++k) {
-    check_case(random_case(1000 + static_cast<std::uint64_t>(k)), dir);
+    check_case(random_case(first + static_cast<std::uint64_t>(k)), dir);
   }
 }
 
