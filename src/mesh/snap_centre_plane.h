@@ -10,8 +10,10 @@
 namespace hm {
 
 // Sets y = 0 on every vertex of the open boundary (an edge with one face) within tol (metres) of
-// the plane. Returns how many moved. The move is at most tol, so a mesh within a deviation bound
-// of its surface stays within that bound plus tol.
+// the plane, and on the corners of a face along it that lies within tol of the plane and would
+// lie back to back with its mirror image (centres within a twentieth of its size: a sliver at a
+// fine stem). Returns how many moved. The move is at most tol, so a mesh within a deviation
+// bound of its surface stays within that bound plus tol.
 std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol);
 
 // Removes the faces whose corners all lie on y = 0 exactly (after snapping): a panel in the

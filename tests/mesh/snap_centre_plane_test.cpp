@@ -25,6 +25,37 @@ TEST(SnapToCentrePlane, MovesOnlyOpenBoundaryVerticesWithinTheTolerance) {
   EXPECT_EQ(fan.positions[4].y, 1e-5);
 }
 
+// Property seed 1987's stem: a sliver between the last station and the stem has a side on the
+// plane (behind a face lying in the plane, which drop_centre_plane_faces removes) and a corner
+// 2 cm off it, so its mirror image's centre would be within a twentieth of its size: both go
+// onto the plane, and out. Farther off the plane (a real panel) it stays.
+TEST(SnapToCentrePlane, ASliverThatWouldLieBackToBackWithItsMirrorGoesOntoThePlane) {
+  for (const double off : {0.02, 0.2}) {
+    // Faces round vertex 2 (an inner vertex: the first rule leaves it): the sliver 2-0-1, the
+    // face 1-0-4 in the plane behind it, and 1-3-2, 0-2-5, 2-3-5 closing the fan.
+    SurfaceMesh m;
+    m.positions = {{0, 0, 0},    {2, 0, -2},     {0.1, off, -0.25},
+                   {1, 1, -1.5}, {1.5, 0, -0.5}, {0.5, 1, 0.5}};
+    m.faces = {{2, 0, 1, kInvalid},
+               {1, 0, 4, kInvalid},
+               {1, 3, 2, kInvalid},
+               {0, 2, 5, kInvalid},
+               {2, 3, 5, kInvalid}};
+    const std::size_t moved = snap_to_centre_plane(m, 0.05);
+    const std::size_t dropped = drop_centre_plane_faces(m);
+    if (off < 0.05) {
+      EXPECT_EQ(moved, 1u);
+      EXPECT_EQ(m.positions[2].y, 0.0);
+      EXPECT_EQ(dropped, 2u);
+      EXPECT_EQ(m.face_count(), 3u);
+    } else {
+      EXPECT_EQ(moved, 0u);
+      EXPECT_EQ(m.positions[2].y, off);
+      EXPECT_EQ(dropped, 1u);  // the face in the plane alone
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hm
 
