@@ -133,7 +133,7 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
     const bool row_ends = u < row_end.size() && w < row_end.size() && row_end[u] && row_end[w];
     // Any other panel edge (an end cap's) is a gap only where it cuts such a corner, both ends
     // on the boundary itself: a transom immersed a few hundredths of a panel, whose corner below
-    // the waterline the cap's resampling drops (the property test's seeds 1203-1295).
+    // the waterline the cap's resampling drops (the property test's seeds 1205-1231).
     if (!row_ends) {
       if (!turns) continue;
       const std::vector<Vec3d> best =
