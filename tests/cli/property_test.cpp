@@ -27,6 +27,7 @@ namespace hm {
 namespace {
 
 namespace fs = std::filesystem;
+using test::is_share_rule;
 using test::run_hullmesh;
 
 using test::q;
@@ -90,12 +91,6 @@ Case random_case(std::uint64_t seed) {
   c.draft = draft * uniform(0.6, 1.1);
   c.panels = 300 + 100 * pick(10);
   return c;
-}
-
-// A failure line of a share rule ("...: 96.7% pass, need 98%") or the warp; every other line is
-// a hard rule.
-bool is_share_rule(const std::string& failure) {
-  return failure.find("% pass, need") != std::string::npos || failure.rfind("max warp", 0) == 0;
 }
 
 void check_case(const Case& c, const fs::path& dir) {

@@ -24,6 +24,7 @@ namespace hm {
 namespace {
 
 namespace fs = std::filesystem;
+using test::is_share_rule;
 using test::q;
 using test::run_hullmesh;
 
@@ -33,12 +34,6 @@ struct Replay {
   const char* draft;     // m
   int panels;
 };
-
-// A failure line of a share rule ("...: 96.7% pass, need 98%") or the warp; every other line is
-// a hard rule.
-bool is_share_rule(const std::string& failure) {
-  return failure.find("% pass, need") != std::string::npos || failure.rfind("max warp", 0) == 0;
-}
 
 TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
   const Replay cases[] = {
