@@ -9,13 +9,6 @@
 #include "mesh/adjacency.h"
 
 namespace hm {
-namespace {
-
-// Two panel centres closer than this share of the smaller panel's size are "very close" (the
-// quality report's close_centre_fraction).
-constexpr double kCloseCentre = 0.05;
-
-}  // namespace
 
 std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol) {
   const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, mesh.vertex_count());
@@ -63,7 +56,7 @@ std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol) {
     for (int c = 0; c < corner_count(f); ++c)
       near = near && std::abs(mesh.positions[f[c]].y) <= tol;
     const double size = std::sqrt(face_area(mesh.positions, f));
-    if (near && 2 * std::abs(face_centroid(mesh.positions, f).y) < kCloseCentre * size)
+    if (near && 2 * std::abs(face_centroid(mesh.positions, f).y) < kCloseCentreFraction * size)
       sliver.push_back(static_cast<Index>(fi));
   }
   for (Index fi : sliver) {

@@ -41,6 +41,11 @@ struct FaceField {
   std::span<const double> values;
 };
 
+// Two panel centres nearer than this share of the smaller panel's size (the square root of its
+// area) are "very close": panel codes refuse such pairs (the quality report's rule, and what the
+// meshers avoid where a hull's halves are tangent or meet at a fine stem).
+inline constexpr double kCloseCentreFraction = 0.05;
+
 // Area of a triangle or of a quad (as two triangles split along 0-2), in m^2.
 double face_area(std::span<const Vec3d> positions, const Face& f);
 // Unit normal by the right-hand rule over the corners (Newell's method for quads).

@@ -60,7 +60,7 @@ struct QualityOptions {
   double zero_area_rel = 1e-10;
   // Two panel centres are "very close" when nearer than this fraction of the smaller panel's
   // size (sqrt of its area).
-  double close_centre_fraction = 0.05;
+  double close_centre_fraction = kCloseCentreFraction;
   // Boundary classification tolerance, relative to the bounding-box diagonal.
   double plane_tol = 1e-6;
   WaveOptions waves;

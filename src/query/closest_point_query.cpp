@@ -177,7 +177,8 @@ ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const Patc
     // the face beyond, and a face that barely moves with u (a transom that narrows to the keel)
     // looks converged. Sample the triangle's (u, v) box and its surroundings instead, and start
     // again from the nearest sample.
-    if (d > c.distance + 2 * m.max_deviation + 1e-9 * m.length) {
+    const double too_far = c.distance + 2 * m.max_deviation + 1e-9 * m.length;
+    if (d > too_far) {
       const Vec2d corner[3] = {m.uv_at(c.triangle, 0, 0), m.uv_at(c.triangle, 1, 0),
                                m.uv_at(c.triangle, 0, 1)};
       Vec2d lo = corner[0], hi = corner[0];
@@ -209,7 +210,7 @@ ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const Patc
       // a transom a few metres wide), the samples miss the fast side, while a corner on it
       // starts Newton there (property seed 1535: 0.81 m reported on a keel point).
       for (const Vec2d& k : corner) {
-        if (d <= c.distance + 2 * m.max_deviation + 1e-9 * m.length) break;
+        if (d <= too_far) break;
         const double d_k = refine_from(k, uv_s, point_s);
         if (d_k < d) d = d_k, uv = uv_s, point = point_s;
       }

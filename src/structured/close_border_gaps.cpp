@@ -179,13 +179,7 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
     // The gap lies across the edge from its face, which runs u -> w: a fan from w, starting with
     // (w, u, q1), runs w -> u.
     std::vector<Index> q;
-    for (const Vec3d& p : inner) {
-      q.push_back(static_cast<Index>(mesh.positions.size()));
-      mesh.positions.push_back(p);
-      mesh.vertex_patch.push_back(mesh.vertex_patch[u]);
-      mesh.vertex_uv.push_back(mesh.vertex_uv[u]);
-      slots.push_back(NodeSlot{});
-    }
+    for (const Vec3d& p : inner) q.push_back(add_node(p, u, mesh, slots));
     mesh.faces.push_back({w, u, q.front(), kInvalid});
     for (std::size_t i = 0; i + 1 < q.size(); ++i)
       mesh.faces.push_back({w, q[i], q[i + 1], kInvalid});

@@ -31,6 +31,7 @@ class EditableFaces {
   bool removed(Index f) const { return faces_[f][0] == kInvalid; }
   const std::set<Index>& around(Index v) const { return around_[v]; }
   const Vec3d& position(Index v) const { return positions_[v]; }
+  std::span<const Vec3d> positions() const { return positions_; }
 
   // The face other than f that has the side a-b; kInvalid when none (a free side).
   Index across(Index f, Index a, Index b) const;

@@ -38,18 +38,6 @@ namespace {
 // How far along N the inner side moves (repair 2).
 constexpr double kExtendSteps[] = {0.15, 0.3};
 
-// Face f's area vector (Newell's formula: twice its area along its normal).
-Vec3d newell(const EditableFaces& m, const Face& f) {
-  Vec3d n{0, 0, 0};
-  const int c = corner_count(f);
-  for (int k = 0; k < c; ++k) {
-    const Vec3d& a = m.position(f[k]);
-    const Vec3d& b = m.position(f[(k + 1) % c]);
-    n += cross(a, b);
-  }
-  return n;
-}
-
 // The centroid of f's corners other than a and b.
 Vec3d off_side(const EditableFaces& m, const Face& f, Index a, Index b) {
   Vec3d sum{0, 0, 0};
@@ -73,9 +61,9 @@ bool folds(const EditableFaces& m, const std::set<Index>& core) {
       const Index a = f[k], b = f[(k + 1) % c];
       const Index h = m.across(g, a, b);
       if (h == kInvalid) continue;
-      const Vec3d ng = newell(m, f), nh = newell(m, m.face(h));
-      if (norm(ng) == 0 || norm(nh) == 0) continue;
-      const Vec3d n = ng / norm(ng) + nh / norm(nh);
+      const Vec3d ng = face_normal(m.positions(), f), nh = face_normal(m.positions(), m.face(h));
+      if (ng == Vec3d{} || nh == Vec3d{}) continue;  // no area: no side to fold over
+      const Vec3d n = ng + nh;
       const Vec3d pa = m.position(a), ab = m.position(b) - pa;
       const double s1 = dot(cross(ab, off_side(m, f, a, b) - pa), n);
       const double s2 = dot(cross(ab, off_side(m, m.face(h), a, b) - pa), n);

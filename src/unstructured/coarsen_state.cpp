@@ -295,7 +295,6 @@ bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
 }
 
 bool back_to_back(const State& s, const std::array<Index, 3>& a, const std::array<Index, 3>& b) {
-  constexpr double kCloseCentre = 0.05;
   auto twice_area_normal = [&](const std::array<Index, 3>& t) {
     return cross(s.position[t[1]] - s.position[t[0]], s.position[t[2]] - s.position[t[0]]);
   };
@@ -304,7 +303,8 @@ bool back_to_back(const State& s, const std::array<Index, 3>& a, const std::arra
   const Vec3d ca = (s.position[a[0]] + s.position[a[1]] + s.position[a[2]]) / 3.0;
   const Vec3d cb = (s.position[b[0]] + s.position[b[1]] + s.position[b[2]]) / 3.0;
   // |ca - cb| < k sqrt(area), squared, with area = |n| / 2.
-  return squared_norm(ca - cb) < kCloseCentre * kCloseCentre * 0.5 * std::min(norm(na), norm(nb));
+  return squared_norm(ca - cb) <
+         kCloseCentreFraction * kCloseCentreFraction * 0.5 * std::min(norm(na), norm(nb));
 }
 
 bool back_to_back_across(const State& s, const std::array<Index, 3>& corners,

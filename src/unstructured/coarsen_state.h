@@ -168,7 +168,7 @@ bool reassign_witnesses(State& s, std::span<const Index> from, Index extra,
                         std::span<const Index> targets, double& deviation);
 
 // Two triangles (corner triples) lying back to back: facing opposite ways, with centres closer
-// than the panel codes' close-centre share (QualityOptions::close_centre_fraction, 0.05) of the
+// than the panel codes' close-centre share (kCloseCentreFraction, 0.05) of the
 // square root of the smaller one's area. Such pairs form where the hull's two halves are
 // tangent, as a full Wigley's are where its stem meets its keel: a panel whose corners all lie on
 // the stem and the keel lies in the centre plane on both sides.
