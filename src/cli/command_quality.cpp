@@ -31,6 +31,7 @@ struct QualityCliOptions {
   bool json = false;
   std::optional<double> speed, froude, length, waterline_z;
   bool half = false;
+  bool uncut = false;
   std::string vtu;
   std::string iges;  // --iges: the hull the mesh was made from, for the deviation
 };
@@ -120,6 +121,7 @@ int run_quality(const QualityCliOptions& o, const GlobalOptions& g) {
   const MeshFile file = read_mesh(o.file);
   QualityOptions q;
   q.waterline_z = o.waterline_z;
+  q.uncut = o.uncut;
   // --half or the file's own symmetry flag; otherwise detected from the vertices.
   if (o.half || file.info.symmetry.about_y0) q.half_hull = true;
   q.waves.speed = o.speed;
@@ -206,6 +208,9 @@ void register_quality(CLI::App& app, const GlobalOptions& global, Action& action
       ->check(CLI::PositiveNumber);
   cmd->add_option("--waterline-z", opts->waterline_z,
                   "Waterplane z in the mesh frame, m (default: the top of the mesh)");
+  cmd->add_flag("--uncut", opts->uncut,
+                "The mesh is not cut at a waterline: it ends at the hull's deck edge or sheer "
+                "line, and a boundary that reaches the top of the mesh is that edge, not a hole");
   cmd->add_flag("--half", opts->half, "The mesh is a half hull (y >= 0), symmetric about y = 0");
   cmd->add_option("-o,--output", opts->vtu, "Write the per-panel measures as cell data (.vtu)");
   cmd->add_option("--iges", opts->iges,

@@ -142,6 +142,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   qo.knuckle_edges = knuckle_edges;
   qo.rules.min_triangle_angle_share = 0;
   if (ph.floating) qo.waterline_z = 0;
+  qo.uncut = !ph.floating;  // no draft: the mesh ends at the deck edge
   // No panel may pass through another (a panel code cannot integrate over such a surface): a
   // hard rule of the report, and a warning naming the patches.
   report_surface_crossings(ph, g.quiet);
@@ -260,10 +261,11 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
                 dev.max, dev.where.x, dev.where.y, dev.where.z, dev.mean);
     if (hydro) print_hydrostatics(hydro->mesh, hydro->nurbs);
     std::printf(
-        "  topology: %zu boundary loops, %zu non-manifold edges, %zu free edges below "
-        "the waterline, orientation %s\n",
+        "  topology: %zu boundary loops, %zu non-manifold edges, %zu free edges %s, orientation "
+        "%s\n",
         quality.topology.boundary_loops, quality.topology.nonmanifold_edges,
         quality.topology.free_edges_below,
+        quality.topology.uncut ? "off the deck edge and the centre plane" : "below the waterline",
         quality.topology.orientation_consistent ? "consistent" : "INCONSISTENT");
     if (ph.floating && ph.floating->meshes_above()) {
       std::printf(

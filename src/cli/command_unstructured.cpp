@@ -186,6 +186,7 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   qo.knuckle_edges = knuckle_edges;
   qo.rules.min_triangle_angle_share = 0;
   if (floating) qo.waterline_z = 0;
+  qo.uncut = !floating;  // no draft: the mesh ends at the deck edge
   // No panel may pass through another (a panel code cannot integrate over such a surface): a
   // hard rule of the report, and a warning naming the patches.
   report_surface_crossings(ph, g.quiet);

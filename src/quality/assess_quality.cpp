@@ -15,6 +15,7 @@ ResolvedSettings resolve(const SurfaceMesh& mesh, const QualityOptions& o) {
   ResolvedSettings s;
   s.tol = o.plane_tol * box.diagonal();
   s.waterline_z = o.waterline_z.value_or(box.empty() ? 0.0 : box.hi.z);
+  s.uncut = o.uncut;
   s.half_hull = o.half_hull.value_or(!box.empty() && (box.lo.y >= -s.tol || box.hi.y <= s.tol) &&
                                      box.hi.y - box.lo.y > s.tol);
   return s;
@@ -168,7 +169,8 @@ std::vector<std::string> QualityReport::failures(const QualityRules& rules) cons
   count(rules.require_consistent_orientation, topology.inconsistent_edges,
         "edges with inconsistent orientation");
   count(rules.require_no_free_edges_below_waterline, topology.free_edges_below,
-        "free edges below the waterline");
+        topology.uncut ? "free edges off the deck edge and the centre plane (holes)"
+                       : "free edges below the waterline");
   if (rules.require_normals_into_fluid && faces > 0 && !topology.normals_into_fluid)
     out.push_back(
         fmt("normals point into the body (enclosed volume %.6g m^3)", topology.enclosed_volume));

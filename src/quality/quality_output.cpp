@@ -79,7 +79,8 @@ std::string to_json(const QualityReport& r, const QualityRules& rules, int inden
                    {"orientation_consistent", t.orientation_consistent},
                    {"enclosed_volume_m3", t.enclosed_volume},
                    {"normals_into_fluid", t.normals_into_fluid},
-                   {"waterline_z", t.waterline_z}};
+                   {"waterline_z", t.waterline_z},
+                   {"uncut", t.uncut}};
   if (r.waves.requested) {
     const WaveFigures& w = r.waves;
     j["waves"] = {{"speed_m_s", w.speed},
@@ -138,10 +139,14 @@ std::string format_table(const QualityReport& r, const QualityRules& rules) {
   const TopologyFacts& t = r.topology;
   s += "\n";
   s += line("watertight", t.watertight ? "yes" : "no");
-  s += line("boundary edges",
-            f("%zu in %zu loops: %zu centre plane, %zu waterline, %zu above", t.boundary_edges,
-              t.boundary_loops, t.centre_plane_edges, t.waterline_edges, t.above_water_edges));
-  s += line("free edges below waterline", f("%zu", t.free_edges_below));
+  s += line(
+      "boundary edges",
+      t.uncut ? f("%zu in %zu loops: %zu centre plane, %zu deck edge or sheer (no waterline)",
+                  t.boundary_edges, t.boundary_loops, t.centre_plane_edges, t.above_water_edges)
+              : f("%zu in %zu loops: %zu centre plane, %zu waterline, %zu above", t.boundary_edges,
+                  t.boundary_loops, t.centre_plane_edges, t.waterline_edges, t.above_water_edges));
+  s += line(t.uncut ? "free edges (holes)" : "free edges below waterline",
+            f("%zu", t.free_edges_below));
   s += line("panels across waterline", f("%zu", t.panels_across_waterline));
   s += line("non-manifold edges", f("%zu", t.nonmanifold_edges));
   s += line("orientation consistent",

@@ -48,6 +48,11 @@ struct QualityOptions {
   // The waterplane z in the mesh frame; default: the highest point of the mesh (a mesh of the
   // wetted part ends on its waterline).
   std::optional<double> waterline_z;
+  // The mesh is not cut at a waterplane: it ends at the hull's own upper edge (deck edge or sheer
+  // line), which may fall well below the top of the mesh towards the ends. A run of boundary
+  // edges off the centre plane that reaches the top of the mesh is that upper edge and counts as
+  // above water; a run that does not (a hole, a gap beside the keel) stays a free edge.
+  bool uncut = false;
   // The mesh is one side of the centre plane y = 0 (boundary edges on it are expected). Unset:
   // a half hull when every vertex lies on one side of y = 0 (within plane_tol).
   std::optional<bool> half_hull;
@@ -107,7 +112,8 @@ struct TopologyFacts {
   std::size_t boundary_loops = 0;
   std::size_t centre_plane_edges = 0;  // boundary edges on y = 0
   std::size_t waterline_edges = 0;     // boundary edges on z = waterline_z
-  std::size_t above_water_edges = 0;   // boundary edges above the waterline (deck, sheer)
+  std::size_t above_water_edges = 0;   // boundary edges above the waterline (deck, sheer);
+                                       // with QualityOptions::uncut, the hull's upper edge
   std::size_t free_edges_below = 0;    // any other boundary edge: a hole in the wetted hull
   // Panels with corners on both sides of the waterplane: a mesh that goes on above the
   // waterline should still end its panels on it.
@@ -126,6 +132,7 @@ struct TopologyFacts {
   double enclosed_volume = 0;
   bool normals_into_fluid = false;
   double waterline_z = 0;
+  bool uncut = false;  // QualityOptions::uncut: no waterline, above_water_edges the upper edge
 };
 
 struct WaveFigures {

@@ -13,7 +13,8 @@ namespace hm {
 struct ResolvedSettings {
   double waterline_z = 0;
   bool half_hull = false;
-  double tol = 0;  // absolute plane tolerance, m
+  double tol = 0;      // absolute plane tolerance, m
+  bool uncut = false;  // QualityOptions::uncut
 };
 
 // quality_metrics.cpp: per-face metrics (kernel) into report.per_face and the summary figures.

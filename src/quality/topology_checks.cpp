@@ -14,13 +14,60 @@ namespace {
 
 enum class BoundaryKind { kCentrePlane, kWaterline, kAboveWater, kFreeBelow };
 
+bool on_centre_plane(const Vec3d& p, const Vec3d& q, const ResolvedSettings& s) {
+  return s.half_hull && std::abs(p.y) <= s.tol && std::abs(q.y) <= s.tol;
+}
+
 BoundaryKind classify(const Vec3d& p, const Vec3d& q, const ResolvedSettings& s) {
-  if (s.half_hull && std::abs(p.y) <= s.tol && std::abs(q.y) <= s.tol)
-    return BoundaryKind::kCentrePlane;
+  if (on_centre_plane(p, q, s)) return BoundaryKind::kCentrePlane;
   if (std::abs(p.z - s.waterline_z) <= s.tol && std::abs(q.z - s.waterline_z) <= s.tol)
     return BoundaryKind::kWaterline;
   if (std::min(p.z, q.z) >= s.waterline_z - s.tol) return BoundaryKind::kAboveWater;
   return BoundaryKind::kFreeBelow;
+}
+
+// The upper edge of a mesh not cut at a waterplane, per edge: each run of consecutive boundary
+// edges off the centre plane, along a boundary loop, that has a vertex at the top of the mesh. A
+// half hull's loop runs down the centre plane from the deck at one end, along the keel, up to the
+// deck at the other and back along the deck edge; a gap beside the keel splits the centre-plane
+// part, and its run stays below the top.
+std::vector<std::uint8_t> upper_edge(const SurfaceMesh& mesh, const EdgeAdjacency& adj,
+                                     const ResolvedSettings& s) {
+  std::vector<std::uint8_t> upper(adj.edges.size(), 0);
+  auto centre = [&](Index e) {
+    return on_centre_plane(mesh.positions[adj.edges[e].v0], mesh.positions[adj.edges[e].v1], s);
+  };
+  auto at_top = [&](Index v) { return mesh.positions[v].z >= s.waterline_z - s.tol; };
+  for (const BoundaryLoop& loop : adj.boundary_loops) {
+    const std::size_t n = loop.edges.size();
+    // A closed loop is read from just after a centre-plane edge, so that no run wraps round.
+    std::size_t start = 0;
+    if (loop.closed) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (centre(loop.edges[i])) {
+          start = i + 1;
+          break;
+        }
+      }
+    }
+    auto edge = [&](std::size_t i) { return loop.edges[(start + i) % n]; };
+    for (std::size_t i = 0; i < n;) {
+      if (centre(edge(i))) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      bool top = false;
+      for (; j < n && !centre(edge(j)); ++j) {
+        top = top || at_top(adj.edges[edge(j)].v0) || at_top(adj.edges[edge(j)].v1);
+      }
+      if (top) {
+        for (std::size_t k = i; k < j; ++k) upper[edge(k)] = 1;
+      }
+      i = j;
+    }
+  }
+  return upper;
 }
 
 // Orientation parity of every face relative to the first face of its component (breadth-first
@@ -67,6 +114,7 @@ void check_topology(const SurfaceMesh& mesh, const EdgeAdjacency& adj, const Res
                     std::vector<std::uint8_t>& nonmanifold_face) {
   TopologyFacts& t = r.topology;
   t.waterline_z = s.waterline_z;
+  t.uncut = s.uncut;
   t.edges = adj.edges.size();
   t.boundary_edges = adj.boundary_edges.size();
   t.boundary_loops = adj.boundary_loops.size();
@@ -76,9 +124,16 @@ void check_topology(const SurfaceMesh& mesh, const EdgeAdjacency& adj, const Res
   t.orientation_consistent = adj.inconsistent_edges.empty();
   free_edge_face.assign(mesh.face_count(), 0);
   nonmanifold_face.assign(mesh.face_count(), 0);
+  const std::vector<std::uint8_t> upper =
+      s.uncut ? upper_edge(mesh, adj, s) : std::vector<std::uint8_t>{};
   for (Index e : adj.boundary_edges) {
     const MeshEdge& m = adj.edges[e];
-    switch (classify(mesh.positions[m.v0], mesh.positions[m.v1], s)) {
+    BoundaryKind kind = classify(mesh.positions[m.v0], mesh.positions[m.v1], s);
+    // Uncut, there is no waterline: the flat parts of the upper edge count with the rest.
+    if (kind != BoundaryKind::kCentrePlane && !upper.empty() && upper[e]) {
+      kind = BoundaryKind::kAboveWater;
+    }
+    switch (kind) {
       case BoundaryKind::kCentrePlane:
         ++t.centre_plane_edges;
         break;

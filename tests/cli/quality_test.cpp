@@ -120,5 +120,27 @@ TEST(CliQuality, MeshFileGivenAsIgesIsBadInput) {
   EXPECT_NE(r.out.find("half.gdf"), std::string::npos) << r.out;
 }
 
+// DTMB 5415 meshed with no draft ends at its deck edge, which falls from 0.50 m at the bow to
+// 0.26 m amidships, and at its open stern (the file has no transom), down to 0.075 m. The mesher
+// reads that as the hull's upper edge, and so does `hullmesh quality --uncut`; judged against a
+// waterline at the top of the mesh (the default, for a wetted mesh) it was 166 free edges below.
+TEST(CliQuality, AnUncutHullsDeckEdgeIsNoHole) {
+  HM_REQUIRE_SHARED_HULL(hull, "dtmb5415.iges");
+  const fs::path out = test::scratch_dir("cli_quality_uncut") / "panels.gdf";
+  const auto r = run_hullmesh("structured " + q(hull) + " -o " + q(out) + " --panels 2000");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("0 free edges off the deck edge and the centre plane"), std::string::npos)
+      << r.out;
+  const nlohmann::json uncut = quality_json(q(out) + " --uncut");
+  ASSERT_FALSE(uncut.is_discarded());
+  EXPECT_TRUE(uncut["topology"]["uncut"].get<bool>());
+  EXPECT_EQ(uncut["topology"]["free_edges_below_waterline"].get<int>(), 0);
+  EXPECT_EQ(uncut["topology"]["waterline_edges"].get<int>(), 0);
+  EXPECT_GT(uncut["topology"]["above_water_edges"].get<int>(), 100);
+  const nlohmann::json wetted = quality_json(q(out));
+  ASSERT_FALSE(wetted.is_discarded());
+  EXPECT_GT(wetted["topology"]["free_edges_below_waterline"].get<int>(), 100);
+}
+
 }  // namespace
 }  // namespace hm

@@ -152,6 +152,50 @@ TEST(Quality, CubeWithBottomRemovedHasFourFreeEdgesBelowTheWaterline) {
   EXPECT_EQ(rt.topology.above_water_edges, 4u);
 }
 
+// A half box open on y = 0 and at the top, its top edge given a sheer (raised towards x = 2),
+// and one bottom panel beside the centre plane taken out: uncut, the whole top edge is the deck
+// edge and only the hole's edges are free; judged against a waterline at the top, as before, the
+// deck edge below the top was called free as well.
+TEST(Quality, AnUncutHullsSheeredDeckEdgeIsNoHoleButAGapBesideTheKeelIs) {
+  SurfaceMesh m = test::box_mesh({0, 0, 0}, {2, 1, 1}, 4);
+  std::vector<Face> kept;
+  std::size_t dropped_bottom = 0;
+  for (const Face& f : m.faces) {
+    const Vec3d n = face_normal(m.positions, f);
+    const Vec3d c = face_centroid(m.positions, f);
+    if (n.y < -0.5 || n.z > 0.5) continue;  // the centre plane and the deck
+    if (n.z < -0.5 && c.y < 0.25 && c.x > 0.5 && c.x < 1.0) {
+      ++dropped_bottom;  // the panel of the bottom beside the keel, at x 0.5..1
+      continue;
+    }
+    kept.push_back(f);
+  }
+  ASSERT_EQ(dropped_bottom, 1u);
+  m.faces = kept;
+  m.face_patch.assign(kept.size(), 0);
+  for (Vec3d& p : m.positions) {
+    if (p.z > 0.5) p.z += 0.1 * p.x;  // the sheer: the deck edge rises 0.2 towards x = 2
+  }
+  QualityOptions o;
+  o.half_hull = true;
+  const QualityReport cut = assess_quality(m, o);
+  // The old reading: the deck edge below the top at x = 2 is free, as is the hole.
+  EXPECT_GT(cut.topology.free_edges_below, 4u);
+  o.uncut = true;
+  const QualityReport r = assess_quality(m, o);
+  EXPECT_TRUE(r.topology.uncut);
+  EXPECT_EQ(r.topology.boundary_loops, 1u);  // the hole opens onto the centre plane
+  // The hole's three edges off the centre plane (its fourth lies on y = 0).
+  EXPECT_EQ(r.topology.free_edges_below, 3u);
+  EXPECT_EQ(r.topology.waterline_edges, 0u);
+  // The deck edge: 4 edges along each of the two sides and the far end (the near end x = 0 too).
+  EXPECT_EQ(r.topology.above_water_edges, 12u);
+  const std::vector<std::string> why = r.failures(o.rules);
+  bool named = false;
+  for (const std::string& w : why) named = named || w.find("3 free edges off the deck edge") == 0;
+  EXPECT_TRUE(named);
+}
+
 TEST(Quality, HalfBoxBoundaryOnCentrePlaneAndWaterlineIsExpected) {
   // The wetted part of a half box: y >= 0, z <= 0.5, open on y = 0 and at the waterline.
   SurfaceMesh m = test::box_mesh({0, 0, 0}, {2, 1, 0.5}, 2);
