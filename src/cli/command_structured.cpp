@@ -205,6 +205,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
     if (r.non_convex_split > 0)
       std::printf("  non-convex quads split along the diagonal through their reflex corner: %zu\n",
                   r.non_convex_split);
+    if (r.folds_flipped > 0)
+      std::printf(
+          "  pairs of triangles folded onto each other, flipped to the other diagonal: %zu\n",
+          r.folds_flipped);
     if (r.edge_snaps > 0)
       std::printf(
           "  %zu border and knuckle nodes moved onto their patch edge curves (exact NURBS)\n",

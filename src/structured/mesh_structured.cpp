@@ -193,6 +193,7 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
         collapse_wedges(slots, out.knuckle_edges, options.min_opposite_ratio, mesh);
   }
   rep.non_convex_split = split_non_convex(mesh);
+  rep.folds_flipped = unfold_triangles(out.knuckle_edges, mesh);
 
   drop_unused_vertices(out);
   // The blocks' panel counts, as the repairs left them (a block's id is its place in the list).

@@ -94,6 +94,7 @@ struct StructuredReport {
   std::size_t border_distorted = 0, border_removed = 0, border_extended = 0, border_split = 0;
   std::size_t wedges_collapsed = 0;  // wedge quads made triangles by merging a short side's ends
   std::size_t non_convex_split = 0;  // quads left non-convex, split along the reflex diagonal
+  std::size_t folds_flipped = 0;     // pairs of triangles folded onto each other, flipped
   std::size_t size_passes = 1;       // meshing passes (more than one with match_panels)
   std::size_t first_pass_faces = 0;  // the first pass's panel count
   std::vector<BlockReport> blocks;

@@ -176,6 +176,13 @@ std::size_t collapse_wedges(std::span<const NodeSlot> slots,
 // Returns the quads split.
 std::size_t split_non_convex(SurfaceMesh& mesh);
 
+// Pairs of triangles whose normals turn by more than 120 degrees across their shared edge (off a
+// knuckle) are flipped to the pair's other diagonal, when the new triangles face the same way and
+// the new edge is not there already. Nothing moves. Serial in edge order. Returns the pairs
+// flipped.
+std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
+                             SurfaceMesh& mesh);
+
 // Boundary compliance on the exact curves: every node on the panel mesh's open border or on a
 // knuckle edge that lies on a fine boundary or knuckle segment running along an edge of a
 // patch's parameter domain moves onto that NURBS edge curve (a row node where the curve crosses

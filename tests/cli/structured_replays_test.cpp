@@ -10,7 +10,9 @@
 //     vertex onto the waterline and a row's end refined back down onto the chine, 0.17 m under
 //     the waterline (past 1e-3 L, the end snap's reach before);
 //   - seed 1203: a flared stem where a border panel's removal merged a node so that its panels
-//     lay across the next row's: 4 pairs of panels passed through each other.
+//     lay across the next row's: 4 pairs of panels passed through each other;
+//   - seed 2563: a raked stem above a bulb, whose end cap folded two triangles onto each other
+//     (2 pairs of very close panel centres, one on each side of the mirrored hull).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -53,6 +55,10 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
        "round-bilge --length 168.403 --beam 26.0396 --draft 8.71439 --depth 11.0352 --patches 15 "
        "--seed 1203 --full --duplicate-points --flip-every 3",
        "5.26369", 1100},
+      {"stem above a bulb 2563",
+       "round-bilge --length 167.18 --beam 32.2189 --draft 9.26486 --depth 11.216 --patches 11 "
+       "--seed 2563 --full --gap 0.016718 --overlap 0.05 --duplicate-points",
+       "10.074240", 700},
   };
   const fs::path dir = test::scratch_dir("cli_structured_replays");
   for (const Replay& c : cases) {

@@ -1,0 +1,84 @@
+// Pairs of triangles folded onto each other, flipped along their quad's other diagonal. Where a
+// station's row runs the full depth and the row beyond it only round a bulb below a raked stem,
+// the end cap's zip fans from the bulb's top to the station's upper nodes, and the stem's own
+// triangles fold back over that fan (property seed 2563: two triangles 0.11 m apart with opposite
+// normals, a 3.7 m diagonal between them where their other diagonal is 0.11 m). The flip turns
+// such a pair into two triangles that face the same way, when it makes no edge that is there
+// already. Knuckle edges stay. Nothing moves. Serial in edge order; each face flips at most once.
+#include <algorithm>
+#include <cmath>
+
+#include "mesh/adjacency.h"
+#include "structured/structured_steps.h"
+
+namespace hm::structured {
+namespace {
+
+// Two unit normals this far from each other (cosine) are folded over: a turn past 120 degrees,
+// which no panel code takes between neighbours off a knuckle.
+constexpr double kFoldedCosine = -0.5;
+
+Vec3d unit_normal(const SurfaceMesh& mesh, const Face& f) {
+  const Vec3d n = face_normal(mesh.positions, f);
+  const double len = norm(n);
+  return len > 0 ? n / len : Vec3d{};
+}
+
+// The corner of triangle f that is neither a nor b.
+Index off_edge(const Face& f, Index a, Index b) {
+  for (int k = 0; k < 3; ++k) {
+    if (f[k] != a && f[k] != b) return f[k];
+  }
+  return kInvalid;
+}
+
+bool has_edge(const EdgeAdjacency& adj, Index a, Index b) {
+  const MeshEdge key{std::min(a, b), std::max(a, b)};
+  const auto at = std::lower_bound(adj.edges.begin(), adj.edges.end(), key,
+                                   [](const MeshEdge& x, const MeshEdge& y) {
+                                     return x.v0 != y.v0 ? x.v0 < y.v0 : x.v1 < y.v1;
+                                   });
+  return at != adj.edges.end() && at->v0 == key.v0 && at->v1 == key.v1;
+}
+
+}  // namespace
+
+std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
+                             SurfaceMesh& mesh) {
+  const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, mesh.vertex_count());
+  std::vector<std::array<Index, 2>> knuckles(knuckle_edges.begin(), knuckle_edges.end());
+  for (auto& k : knuckles) k = {std::min(k[0], k[1]), std::max(k[0], k[1])};
+  std::sort(knuckles.begin(), knuckles.end());
+  std::vector<std::uint8_t> touched(mesh.faces.size(), 0);
+  std::size_t flipped = 0;
+  for (std::size_t e = 0; e < adj.edges.size(); ++e) {
+    const MeshEdge& edge = adj.edges[e];
+    if (edge.uses != 2 || edge.same_direction) continue;
+    const Index g = edge.first_slot / 4, h = adj.opposite_face[edge.first_slot];
+    if (h == kInvalid || touched[g] || touched[h]) continue;
+    if (!is_triangle(mesh.faces[g]) || !is_triangle(mesh.faces[h])) continue;
+    if (std::binary_search(knuckles.begin(), knuckles.end(),
+                           std::array<Index, 2>{edge.v0, edge.v1})) {
+      continue;
+    }
+    if (dot(unit_normal(mesh, mesh.faces[g]), unit_normal(mesh, mesh.faces[h])) > kFoldedCosine) {
+      continue;
+    }
+    // g runs a -> b along the edge, h b -> a; the flip's triangles (a, d, c) and (d, b, c) keep
+    // the boundary a -> d -> b -> c of the pair.
+    const Index a = mesh.faces[g][edge.first_slot % 4],
+                b = mesh.faces[g][(edge.first_slot % 4 + 1) % 3];
+    const Index c = off_edge(mesh.faces[g], a, b), d = off_edge(mesh.faces[h], a, b);
+    if (c == kInvalid || d == kInvalid || c == d || has_edge(adj, c, d)) continue;
+    const Face t0{a, d, c, kInvalid}, t1{d, b, c, kInvalid};
+    const Vec3d n0 = unit_normal(mesh, t0), n1 = unit_normal(mesh, t1);
+    if (n0 == Vec3d{} || n1 == Vec3d{} || dot(n0, n1) <= 0) continue;
+    mesh.faces[g] = t0;
+    mesh.faces[h] = t1;
+    touched[g] = touched[h] = 1;
+    ++flipped;
+  }
+  return flipped;
+}
+
+}  // namespace hm::structured
