@@ -137,7 +137,8 @@ void drop_unused_vertices(StructuredMesh& out) {
 }
 
 // One meshing pass at the given sizes: plan -> rows -> grow -> zip -> caps -> relax -> refine ->
-// repair border panels -> onto the edge curves -> wedges -> non-convex quads -> orient.
+// repair border panels -> onto the edge curves -> wedges -> non-convex quads -> folded pairs ->
+// orient.
 StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surface,
                          const EdgeAdjacency& adjacency, const HullQuery& query,
                          const FeatureSet& features, const StructuredOptions& options,

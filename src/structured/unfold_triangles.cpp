@@ -18,10 +18,17 @@ namespace {
 // which no panel code takes between neighbours off a knuckle.
 constexpr double kFoldedCosine = -0.5;
 
+// A triangle this flat (doubled area over its longest side squared) has no normal to speak of:
+// two of its corners coincide or all three lie on a line, and another step deals with it.
+constexpr double kMinShape = 1e-6;
+
+// The unit normal of triangle f, or zero when it is that flat.
 Vec3d unit_normal(const SurfaceMesh& mesh, const Face& f) {
-  const Vec3d n = face_normal(mesh.positions, f);
+  const Vec3d &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
+  const Vec3d n = cross(b - a, c - a);
+  const double longest = std::max({squared_norm(b - a), squared_norm(c - b), squared_norm(a - c)});
   const double len = norm(n);
-  return len > 0 ? n / len : Vec3d{};
+  return len > kMinShape * longest && len > 0 ? n / len : Vec3d{};
 }
 
 // The corner of triangle f that is neither a nor b.
@@ -61,9 +68,8 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
                            std::array<Index, 2>{edge.v0, edge.v1})) {
       continue;
     }
-    if (dot(unit_normal(mesh, mesh.faces[g]), unit_normal(mesh, mesh.faces[h])) > kFoldedCosine) {
-      continue;
-    }
+    const Vec3d ng = unit_normal(mesh, mesh.faces[g]), nh = unit_normal(mesh, mesh.faces[h]);
+    if (ng == Vec3d{} || nh == Vec3d{} || dot(ng, nh) > kFoldedCosine) continue;
     // g runs a -> b along the edge, h b -> a; the flip's triangles (a, d, c) and (d, b, c) keep
     // the boundary a -> d -> b -> c of the pair.
     const Index a = mesh.faces[g][edge.first_slot % 4],

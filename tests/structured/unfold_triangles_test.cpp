@@ -1,6 +1,6 @@
 // Triangles folded onto each other: the pair that the end cap of property seed 2563 made at a
 // raked stem above a bulb is flipped to its short diagonal; the same pair across a knuckle edge,
-// and a flat pair, stay.
+// a flat pair, and a pair with a triangle of no area (seed 2143), stay.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -64,6 +64,23 @@ TEST(UnfoldTriangles, AKnuckleEdgeAndAFlatPairStay) {
   const std::vector<Face> flat = square.faces;
   EXPECT_EQ(unfold_triangles({}, square), 0u);
   EXPECT_EQ(square.faces, flat);
+}
+
+// Seed 2143's waterline at a fine bow (m): corners 0 and 3 coincide (here 1e-7 m apart), so
+// triangle 1-0-3 has no area and its normal, from rounding, points 130 degrees away from its
+// neighbour's. Flipped, the
+// pair kept a triangle of no area (0-3-2) that the later steps no longer removed, and --validate
+// failed.
+TEST(UnfoldTriangles, APairWithATriangleOfNoAreaStays) {
+  SurfaceMesh m;
+  m.positions = {{157.7033, 0.0065, 0.0},
+                 {155.7519, 0.0002, -0.3886},
+                 {155.7519, 0.4621, 0.0},
+                 {157.7032999, 0.0065, 0.0}};
+  m.faces = {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}};
+  const std::vector<Face> before = m.faces;
+  EXPECT_EQ(unfold_triangles({}, m), 0u);
+  EXPECT_EQ(m.faces, before);
 }
 
 }  // namespace
