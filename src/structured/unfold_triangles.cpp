@@ -4,7 +4,8 @@
 // triangles fold back over that fan (property seed 2563: two triangles 0.11 m apart with opposite
 // normals, a 3.7 m diagonal between them where their other diagonal is 0.11 m). The flip turns
 // such a pair into two triangles that face the same way, when it makes no edge that is there
-// already. Knuckle edges stay. Nothing moves. Serial in edge order; each face flips at most once.
+// already (or that an earlier flip made). Knuckle edges stay. Nothing moves. Serial in edge order;
+// each face flips at most once.
 #include <algorithm>
 #include <cmath>
 
@@ -57,6 +58,8 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
   for (auto& k : knuckles) k = {std::min(k[0], k[1]), std::max(k[0], k[1])};
   std::sort(knuckles.begin(), knuckles.end());
   std::vector<std::uint8_t> touched(mesh.faces.size(), 0);
+  // The edges the flips made: the adjacency, built before them, does not know them.
+  std::vector<std::array<Index, 2>> made;
   std::size_t flipped = 0;
   for (std::size_t e = 0; e < adj.edges.size(); ++e) {
     const MeshEdge& edge = adj.edges[e];
@@ -75,13 +78,18 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
     const Index a = mesh.faces[g][edge.first_slot % 4],
                 b = mesh.faces[g][(edge.first_slot % 4 + 1) % 3];
     const Index c = off_edge(mesh.faces[g], a, b), d = off_edge(mesh.faces[h], a, b);
-    if (c == kInvalid || d == kInvalid || c == d || has_edge(adj, c, d)) continue;
+    const std::array<Index, 2> cd{std::min(c, d), std::max(c, d)};
+    if (c == kInvalid || d == kInvalid || c == d || has_edge(adj, c, d) ||
+        std::find(made.begin(), made.end(), cd) != made.end()) {
+      continue;
+    }
     const Face t0{a, d, c, kInvalid}, t1{d, b, c, kInvalid};
     const Vec3d n0 = unit_normal(mesh, t0), n1 = unit_normal(mesh, t1);
     if (n0 == Vec3d{} || n1 == Vec3d{} || dot(n0, n1) <= 0) continue;
     mesh.faces[g] = t0;
     mesh.faces[h] = t1;
     touched[g] = touched[h] = 1;
+    made.push_back(cd);
     ++flipped;
   }
   return flipped;
