@@ -340,6 +340,48 @@ void extend_lines(const ExtendContext& c, std::vector<std::uint8_t>& flags) {
   }
 }
 
+// A sliver whose three sides are all knuckle edges holds one line twice: two paths between the
+// same two vertices, its longest side and the two sides through its third corner
+// (ship_449_patches.iges: four patch seams at x = const near the bilge, slivers 0.34-0.73 m
+// long and 3-12 mm wide). The longest side stops being a knuckle, and the line runs through
+// the third corner. The coarsening keeps one edge there in any case; counted twice, the lines
+// made the merged surface's knuckles 2 m longer than the panels' could be. A triangle is such a
+// sliver when its third corner lies within kDoubledWidth of its longest side's length of that
+// side. Serial in face order.
+constexpr double kDoubledWidth = 0.05;
+
+void drop_doubled_sides(const SurfaceMesh& mesh, const EdgeAdjacency& adjacency,
+                        std::vector<std::uint8_t>& flags) {
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& face = mesh.faces[f];
+    if (!is_triangle(face)) continue;
+    Index side[3];
+    bool all = true;
+    for (int c = 0; c < 3; ++c) {
+      side[c] = adjacency.slot_edge[4 * f + c];
+      all = all && side[c] != kInvalid && (flags[side[c]] & kKnuckle);
+    }
+    if (!all) continue;
+    // Side c runs from corner c to corner c + 1; the longest, and the corner off it.
+    int longest = 0;
+    double best = -1;
+    for (int c = 0; c < 3; ++c) {
+      const double l = squared_norm(mesh.positions[face[(c + 1) % 3]] - mesh.positions[face[c]]);
+      if (l > best) {
+        best = l;
+        longest = c;
+      }
+    }
+    const Vec3d& a = mesh.positions[face[longest]];
+    const Vec3d& b = mesh.positions[face[(longest + 1) % 3]];
+    const Vec3d& m = mesh.positions[face[(longest + 2) % 3]];
+    // Twice the area over the side: the third corner's distance from the side's line.
+    const double width = norm(cross(b - a, m - a)) / std::sqrt(best);
+    if (!(best > 0) || width > kDoubledWidth * std::sqrt(best)) continue;
+    flags[side[longest]] &= static_cast<std::uint8_t>(~kKnuckle);
+  }
+}
+
 }  // namespace
 
 EdgeFaces edge_faces(const EdgeAdjacency& adjacency, Index e) {
@@ -419,6 +461,7 @@ KnuckleEdges find_knuckles(const SurfaceMesh& mesh, const EdgeAdjacency& adjacen
   if (confirm) {
     extend_lines({mesh, adjacency, patches, pieces, suppress, kExtendFraction * threshold}, flags);
   }
+  drop_doubled_sides(mesh, adjacency, flags);
 
   KnuckleEdges out;
   out.edge_knuckle.resize(flags.size());

@@ -393,6 +393,39 @@ TEST(Features, WaterlineInsideTheSurfaceIsAKnuckleLine) {
   EXPECT_EQ(f.knuckles.size(), 1u);
 }
 
+// A sliver whose three sides are all knuckle edges holds one line twice (ship_449_patches.iges
+// had four, at patch seams near the bilge): its longest side goes, and one line runs through the
+// sliver's third corner. Here a flat square with a sliver 2 mm wide along y = 0, and a hint that
+// makes every edge near y = 0 a knuckle.
+TEST(Features, ASliverWithThreeKnuckleSidesHoldsOneLine) {
+  SurfaceMesh m;
+  // a, b: the line's ends; s: the sliver's third corner; t, u: above and below.
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.002, 0}, {0.5, 1, 0}, {0.5, -1, 0}};
+  const Index a = 0, b = 1, s = 2, t = 3, u = 4;
+  m.faces = {{a, u, b, kInvalid}, {a, b, s, kInvalid}, {a, s, t, kInvalid}, {s, b, t, kInvalid}};
+  m.face_patch.assign(m.faces.size(), 0);
+  const EdgeAdjacency adjacency = build_edge_adjacency(m.faces, m.vertex_count());
+  FeatureOptions o;
+  o.confirm_on_nurbs = false;
+  KnuckleHint along;
+  along.kind = KnuckleHint::Kind::kPoints;
+  along.points = {{0, 0, 0}, {1, 0, 0}};
+  along.distance = 0.01;
+  o.add.push_back(along);
+  const FeatureSet f = find_features(m, adjacency, {}, o);
+  std::size_t knuckle_edges = 0;
+  for (std::size_t e = 0; e < adjacency.edges.size(); ++e) {
+    if (!f.edge_knuckle[e]) continue;
+    ++knuckle_edges;
+    const MeshEdge& me = adjacency.edges[e];
+    EXPECT_TRUE(me.v0 == s || me.v1 == s) << me.v0 << "-" << me.v1;  // not the side a-b
+  }
+  EXPECT_EQ(knuckle_edges, 2u);
+  ASSERT_EQ(f.knuckles.size(), 1u);
+  EXPECT_EQ(f.knuckles[0].vertices, (std::vector<Index>{a, s, b}));
+  EXPECT_NEAR(f.knuckle_length(), 2 * std::hypot(0.5, 0.002), 1e-12);
+}
+
 TEST(Features, HintsAddAndSuppressKnuckles) {
   const Hull& h = hull(HullKind::kChine);
   const FeatureSet plain = features(h);
