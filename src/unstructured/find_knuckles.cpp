@@ -372,12 +372,13 @@ void drop_doubled_sides(const SurfaceMesh& mesh, const EdgeAdjacency& adjacency,
         longest = c;
       }
     }
+    if (!(best > 0)) continue;
     const Vec3d& a = mesh.positions[face[longest]];
     const Vec3d& b = mesh.positions[face[(longest + 1) % 3]];
     const Vec3d& m = mesh.positions[face[(longest + 2) % 3]];
     // Twice the area over the side: the third corner's distance from the side's line.
-    const double width = norm(cross(b - a, m - a)) / std::sqrt(best);
-    if (!(best > 0) || width > kDoubledWidth * std::sqrt(best)) continue;
+    const double side_length = std::sqrt(best);
+    if (norm(cross(b - a, m - a)) / side_length > kDoubledWidth * side_length) continue;
     flags[side[longest]] &= static_cast<std::uint8_t>(~kKnuckle);
   }
 }
