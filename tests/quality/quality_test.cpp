@@ -188,7 +188,7 @@ TEST(Quality, AnUncutHullsSheeredDeckEdgeIsNoHoleButAGapBesideTheKeelIs) {
   // The hole's three edges off the centre plane (its fourth lies on y = 0).
   EXPECT_EQ(r.topology.free_edges_below, 3u);
   EXPECT_EQ(r.topology.waterline_edges, 0u);
-  // The deck edge: 4 edges along each of the two sides and the far end (the near end x = 0 too).
+  // The deck edge: 4 edges along the side y = 1 and 4 across each end, x = 0 and x = 2.
   EXPECT_EQ(r.topology.above_water_edges, 12u);
   const std::vector<std::string> why = r.failures(o.rules);
   bool named = false;
