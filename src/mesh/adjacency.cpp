@@ -211,4 +211,14 @@ EdgeAdjacency build_edge_adjacency(std::span<const Face> faces, std::size_t vert
   return adj;
 }
 
+Index find_edge(const EdgeAdjacency& adj, Index a, Index b) {
+  const std::pair key{std::min(a, b), std::max(a, b)};
+  const auto it = std::lower_bound(adj.edges.begin(), adj.edges.end(), key,
+                                   [](const MeshEdge& m, const std::pair<Index, Index>& k) {
+                                     return std::pair{m.v0, m.v1} < k;
+                                   });
+  if (it == adj.edges.end() || it->v0 != key.first || it->v1 != key.second) return kInvalid;
+  return static_cast<Index>(it - adj.edges.begin());
+}
+
 }  // namespace hm

@@ -54,6 +54,10 @@ struct EdgeAdjacency {
 // edge a -> a is not an edge). Throws GeometryError when a face names a vertex >= vertex_count.
 EdgeAdjacency build_edge_adjacency(std::span<const Face> faces, std::size_t vertex_count);
 
+// The id of the edge joining a and b (either order), by binary search over the sorted keys;
+// kInvalid when the mesh has no such edge.
+Index find_edge(const EdgeAdjacency& adj, Index a, Index b);
+
 // Brings `adj` up to date after the triangles with reversed[f] != 0 were reversed by swapping
 // their corners 1 and 2 (faces as they are now): the same as building it again, for a fraction
 // of the cost. Throws GeometryError when adj is not of this mesh or a reversed face is no

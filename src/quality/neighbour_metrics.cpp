@@ -23,14 +23,9 @@ double normal_angle(const Vec3d& a, const Vec3d& b, bool flip) {
 std::vector<std::uint8_t> knuckle_mask(const EdgeAdjacency& adj, const FaceQuality& fq,
                                        const QualityOptions& o) {
   std::vector<std::uint8_t> mask(adj.edges.size(), 0);
-  // Edge ids follow the sorted (v0, v1) keys, so an input pair is found by binary search.
   for (const std::array<Index, 2>& e : o.knuckle_edges) {
-    const Index a = std::min(e[0], e[1]), b = std::max(e[0], e[1]);
-    auto it = std::lower_bound(adj.edges.begin(), adj.edges.end(), std::pair{a, b},
-                               [](const MeshEdge& m, const std::pair<Index, Index>& k) {
-                                 return std::pair{m.v0, m.v1} < k;
-                               });
-    if (it != adj.edges.end() && it->v0 == a && it->v1 == b) mask[it - adj.edges.begin()] = 1;
+    const Index id = find_edge(adj, e[0], e[1]);
+    if (id != kInvalid) mask[id] = 1;
   }
   parallel_for(0, adj.edges.size(), [&](std::size_t e) {
     const MeshEdge& m = adj.edges[e];

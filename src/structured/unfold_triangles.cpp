@@ -40,23 +40,16 @@ Index off_edge(const Face& f, Index a, Index b) {
   return kInvalid;
 }
 
-bool has_edge(const EdgeAdjacency& adj, Index a, Index b) {
-  const MeshEdge key{std::min(a, b), std::max(a, b)};
-  const auto at = std::lower_bound(adj.edges.begin(), adj.edges.end(), key,
-                                   [](const MeshEdge& x, const MeshEdge& y) {
-                                     return x.v0 != y.v0 ? x.v0 < y.v0 : x.v1 < y.v1;
-                                   });
-  return at != adj.edges.end() && at->v0 == key.v0 && at->v1 == key.v1;
-}
-
 }  // namespace
 
 std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
                              SurfaceMesh& mesh) {
   const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, mesh.vertex_count());
-  std::vector<std::array<Index, 2>> knuckles(knuckle_edges.begin(), knuckle_edges.end());
-  for (auto& k : knuckles) k = {std::min(k[0], k[1]), std::max(k[0], k[1])};
-  std::sort(knuckles.begin(), knuckles.end());
+  std::vector<std::uint8_t> knuckle(adj.edges.size(), 0);
+  for (const std::array<Index, 2>& k : knuckle_edges) {
+    const Index id = find_edge(adj, k[0], k[1]);
+    if (id != kInvalid) knuckle[id] = 1;
+  }
   std::vector<std::uint8_t> touched(mesh.faces.size(), 0);
   // The edges the flips made: the adjacency, built before them, does not know them.
   std::vector<std::array<Index, 2>> made;
@@ -66,11 +59,7 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
     if (edge.uses != 2 || edge.same_direction) continue;
     const Index g = edge.first_slot / 4, h = adj.opposite_face[edge.first_slot];
     if (h == kInvalid || touched[g] || touched[h]) continue;
-    if (!is_triangle(mesh.faces[g]) || !is_triangle(mesh.faces[h])) continue;
-    if (std::binary_search(knuckles.begin(), knuckles.end(),
-                           std::array<Index, 2>{edge.v0, edge.v1})) {
-      continue;
-    }
+    if (knuckle[e] || !is_triangle(mesh.faces[g]) || !is_triangle(mesh.faces[h])) continue;
     const Vec3d ng = unit_normal(mesh, mesh.faces[g]), nh = unit_normal(mesh, mesh.faces[h]);
     if (ng == Vec3d{} || nh == Vec3d{} || dot(ng, nh) > kFoldedCosine) continue;
     // g runs a -> b along the edge, h b -> a; the flip's triangles (a, d, c) and (d, b, c) keep
@@ -79,7 +68,7 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
                 b = mesh.faces[g][(edge.first_slot % 4 + 1) % 3];
     const Index c = off_edge(mesh.faces[g], a, b), d = off_edge(mesh.faces[h], a, b);
     const std::array<Index, 2> cd{std::min(c, d), std::max(c, d)};
-    if (c == kInvalid || d == kInvalid || c == d || has_edge(adj, c, d) ||
+    if (c == kInvalid || d == kInvalid || c == d || find_edge(adj, c, d) != kInvalid ||
         std::find(made.begin(), made.end(), cd) != made.end()) {
       continue;
     }

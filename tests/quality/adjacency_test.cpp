@@ -29,6 +29,19 @@ TEST(Adjacency, ClosedCubeIsWatertightAndConsistent) {
     }
 }
 
+// Every edge is found from its two vertices in either order; a face diagonal is no edge.
+TEST(Adjacency, FindEdgeNamesEachEdgeByItsVertices) {
+  const SurfaceMesh m = test::box_mesh({0, 0, 0}, {1, 1, 1}, 1);
+  const EdgeAdjacency a = build_edge_adjacency(m.faces, m.vertex_count());
+  for (std::size_t e = 0; e < a.edges.size(); ++e) {
+    EXPECT_EQ(find_edge(a, a.edges[e].v0, a.edges[e].v1), e);
+    EXPECT_EQ(find_edge(a, a.edges[e].v1, a.edges[e].v0), e);
+  }
+  const Face& f = m.faces[0];
+  EXPECT_EQ(find_edge(a, f[0], f[2]), kInvalid);
+  EXPECT_EQ(find_edge(a, f[0], static_cast<Index>(m.vertex_count())), kInvalid);
+}
+
 TEST(Adjacency, OpenCubeHasOneClosedBoundaryLoopOfFourEdges) {
   SurfaceMesh m = test::box_mesh({0, 0, 0}, {1, 1, 1}, 1);
   m.faces.erase(m.faces.begin() + 4);  // the side z = 0 (axis 2, side 0)
