@@ -25,6 +25,12 @@ constexpr double kFlipCoplanarCos = 0.94;
 // before: a little below the collapses' sliver shape (0.25), since a pair back to back breaks a
 // panel code's rule and one poor panel only lowers a share.
 constexpr double kApartShape = 0.2;
+// A slide apart may leave the worst panel around the moved corner worse than it was when that
+// was a sliver already (shape under kSliverShape), down to kSliverShareKept of its old shape: a
+// sliver across the gap between a full hull's two stems, whose shape moves by tens of per cent
+// with any move of its corners, and which stays a sliver either way.
+constexpr double kSliverShape = 0.05;
+constexpr double kSliverShareKept = 0.5;
 
 Vec3d tri_cross(const State& s, const std::array<Index, 3>& t) {
   return cross(s.position[t[1]] - s.position[t[0]], s.position[t[2]] - s.position[t[0]]);
@@ -164,17 +170,106 @@ Index line_target(const State& s, Index v) {
   return k;
 }
 
+// Where a vertex would go: its place on the surface, and on a line its fine vertex.
+struct Placement {
+  Vec3d p;
+  Vec2d uv;
+  PatchId patch = kInvalid;
+  Index source = kInvalid;
+  Index k = kInvalid;
+};
+
+// Line vertex v placed on fine vertex k of its line; false when a panel edge along the line
+// would then leave it (line_chord_ok on both sides).
+bool line_placement(const State& s, Index v, Index k, Placement& to) {
+  const Index prev = s.line_nbr[v][0], next = s.line_nbr[v][1];
+  const Index line = s.spot[v].line;
+  const Index kp = line_index(s, v, prev, true), kn = line_index(s, v, next, false);
+  const Vec3d& p = s.fine_positions[s.lines[line].vertices[k]];
+  if (!line_chord_ok(s, line, kp, k, s.position[prev], p) ||
+      !line_chord_ok(s, line, k, kn, p, s.position[next])) {
+    return false;
+  }
+  to.source = s.lines[line].vertices[k];
+  to.p = s.fine_positions[to.source];
+  to.uv = s.fine_uv[to.source];
+  to.patch = s.fine_vertex_patch[to.source];
+  to.k = k;
+  return true;
+}
+
+// Moves v to `to` when its panels allow it; returns true when moved. Normally the panels must
+// get better (the worst no worse, or all fair and their sum higher). `apart` (a slide to part
+// panels lying back to back) asks instead that no panel of the star lie back to back with a
+// neighbour afterwards, and that the worst shape stay at least the old one's or kApartShape
+// (or, for a sliver, kSliverShareKept of it).
+bool try_place(State& s, Index v, const Placement& to, double& deviation, bool apart = false) {
+  const auto& star = s.vertex_faces[v];
+  const Vec3d old_p = s.position[v];
+  double old_min = 1, new_min = 1, old_sum = 0, new_sum = 0;
+  thread_local std::vector<Vec3d> old_normal;
+  old_normal.clear();
+  for (Index f : star) {
+    const double q = tri_shape(s, s.faces[f]);
+    old_min = std::min(old_min, q);
+    old_sum += q;
+    old_normal.push_back(tri_cross(s, s.faces[f]));
+  }
+  // Whether face t with normal m stands within kRestNormalCos of the hull's normal at each of its
+  // smooth corners.
+  auto near_rest = [&](const std::array<Index, 3>& t, const Vec3d& m) {
+    const double lm = norm(m);
+    for (int c = 0; c < 3; ++c) {
+      if (s.kind[t[c]] == Kind::kSmooth && dot(m, s.rest_normal[t[c]]) < kRestNormalCos * lm) {
+        return false;
+      }
+    }
+    return true;
+  };
+  s.position[v] = to.p;
+  bool ok = true;
+  for (std::size_t i = 0; i < star.size() && ok; ++i) {
+    const auto& t = s.faces[star[i]];
+    const Vec3d m = tri_cross(s, t);
+    const double lm = norm(m);
+    ok = lm > 0 && dot(m, old_normal[i]) >= s.cos_normal_change * lm * norm(old_normal[i]);
+    // A slide apart may keep a panel that stood off the hull's normal already (a sliver across
+    // the gap between a full hull's two stems stands square to both halves).
+    if (ok && !(apart && !near_rest(t, old_normal[i]))) ok = near_rest(t, m);
+    if (ok && apart) {
+      const Index self[1] = {star[i]};
+      ok = !back_to_back_across(s, t, self);
+    }
+    const double q = tri_shape(s, t);
+    new_min = std::min(new_min, q);
+    new_sum += q;
+  }
+  if (apart) {
+    const bool sliver_kept = old_min < kSliverShape && new_min >= kSliverShareKept * old_min;
+    ok = ok && (new_min >= std::min(old_min, kApartShape) || sliver_kept);
+  } else {
+    ok = ok && (new_min >= old_min || (new_min >= 0.5 && new_sum > old_sum));
+  }
+  const Index old_source = s.source[v];
+  const Index extra = to.source != old_source ? old_source : kInvalid;
+  if (!ok || !reassign_witnesses(s, star, extra, star, deviation)) {
+    s.position[v] = old_p;
+    return false;
+  }
+  s.uv[v] = to.uv;
+  s.vpatch[v] = to.patch;
+  s.source[v] = to.source;
+  s.spot[v].k = to.k;
+  return true;
+}
+
 // Moves v when that helps; returns true when moved.
 bool try_move(State& s, Index v, double& deviation) {
   if (!s.alive[v] || s.kind[v] == Kind::kCorner) return false;
   const auto& star = s.vertex_faces[v];
   if (star.empty()) return false;
   const Vec3d old_p = s.position[v];
-  Vec3d new_p;
-  Vec2d new_uv = s.uv[v];
-  PatchId new_patch = s.vpatch[v];
-  Index new_source = s.source[v];
-  Index new_k = s.spot[v].k;
+  Placement to{old_p, s.uv[v], s.vpatch[v], s.source[v], s.spot[v].k};
   if (s.kind[v] == Kind::kSmooth) {
     Vec3d centre;
     double area = 0;
@@ -192,59 +287,103 @@ bool try_move(State& s, Index v, double& deviation) {
     const Patch& patch = s.patches[s.vpatch[v]];
     const SurfaceProjection pr = closest_point(patch.surface, old_p + step, s.uv[v].x, s.uv[v].y);
     if (!pr.converged || !is_finite(pr.point) || pr.distance > norm(step)) return false;
-    new_p = pr.point;
-    new_uv = {pr.u, pr.v};
+    to.p = pr.point;
+    to.uv = {pr.u, pr.v};
   } else {
-    new_k = line_target(s, v);
-    if (new_k == s.spot[v].k) return false;
-    const Index prev = s.line_nbr[v][0], next = s.line_nbr[v][1];
-    const Index line = s.spot[v].line;
-    const Vec3d& p = s.fine_positions[s.lines[line].vertices[new_k]];
-    if (!line_chord_ok(s, line, line_index(s, v, prev, true), new_k, s.position[prev], p) ||
-        !line_chord_ok(s, line, new_k, line_index(s, v, next, false), p, s.position[next])) {
-      return false;
+    const Index k = line_target(s, v);
+    if (k == s.spot[v].k || !line_placement(s, v, k, to)) return false;
+  }
+  return try_place(s, v, to, deviation);
+}
+
+// A live face lying back to back with face f across one of its edges; kInvalid when none.
+Index back_to_back_partner(const State& s, Index f) {
+  const auto& t = s.faces[f];
+  for (int e = 0; e < 3; ++e) {
+    for (Index g : s.vertex_faces[t[e]]) {
+      if (g != f && has_corner(s.faces[g], t[(e + 1) % 3]) && back_to_back(s, t, s.faces[g])) {
+        return g;
+      }
     }
-    new_source = s.lines[s.spot[v].line].vertices[new_k];
-    new_p = s.fine_positions[new_source];
-    new_uv = s.fine_uv[new_source];
-    new_patch = s.fine_vertex_patch[new_source];
   }
-  // Check the panels around v at the new place.
-  double old_min = 1, new_min = 1, old_sum = 0, new_sum = 0;
-  thread_local std::vector<Vec3d> old_normal;
-  old_normal.clear();
-  for (Index f : star) {
-    const double q = tri_shape(s, s.faces[f]);
-    old_min = std::min(old_min, q);
-    old_sum += q;
-    old_normal.push_back(tri_cross(s, s.faces[f]));
-  }
-  s.position[v] = new_p;
-  bool ok = true;
-  for (std::size_t i = 0; i < star.size() && ok; ++i) {
-    const auto& t = s.faces[star[i]];
-    const Vec3d m = tri_cross(s, t);
-    const double lm = norm(m);
-    ok = lm > 0 && dot(m, old_normal[i]) >= s.cos_normal_change * lm * norm(old_normal[i]);
-    for (int c = 0; c < 3 && ok; ++c) {
-      if (s.kind[t[c]] == Kind::kSmooth) ok = dot(m, s.rest_normal[t[c]]) >= kRestNormalCos * lm;
+  return kInvalid;
+}
+
+// Slides line vertex v along its line to the nearest fine vertex, on either side and within its
+// line neighbours, where it parts every panel around it.
+bool slide_on_line(State& s, Index v, double& deviation) {
+  const Index kp = line_index(s, v, s.line_nbr[v][0], true);
+  const Index kn = line_index(s, v, s.line_nbr[v][1], false);
+  const Index k0 = s.spot[v].k;
+  if (kp == kInvalid || kn == kInvalid || !(kp < k0 && k0 < kn)) return false;
+  for (Index step = 1; step < k0 - kp || step < kn - k0; ++step) {
+    for (const Index k : {k0 - std::min(step, k0 - kp), k0 + std::min(step, kn - k0)}) {
+      Placement to;
+      if (k > kp && k < kn && line_placement(s, v, k, to) && try_place(s, v, to, deviation, true)) {
+        return true;
+      }
     }
-    const double q = tri_shape(s, t);
-    new_min = std::min(new_min, q);
-    new_sum += q;
   }
-  ok = ok && (new_min >= old_min || (new_min >= 0.5 && new_sum > old_sum));
-  const Index old_source = s.source[v];
-  const Index extra = new_source != old_source ? old_source : kInvalid;
-  if (!ok || !reassign_witnesses(s, star, extra, star, deviation)) {
-    s.position[v] = old_p;
-    return false;
+  return false;
+}
+
+// Slides smooth vertex v of face f on its patch, in the tangent plane, in the direction that
+// takes f's centre away from that of g (back to back with f), by 1.5, 2.5 and 4 times the
+// distance the centres must keep, until the panels around it part.
+bool slide_on_surface(State& s, Index v, Index f, Index g, double& deviation) {
+  auto centre = [&](Index h) {
+    const auto& t = s.faces[h];
+    return (s.position[t[0]] + s.position[t[1]] + s.position[t[2]]) / 3.0;
+  };
+  const Vec3d n = s.rest_normal[v];
+  Vec3d d = centre(f) - centre(g);
+  d -= dot(d, n) * n;
+  const double ld = norm(d);
+  if (!(ld > 0)) return false;
+  d /= ld;
+  const double area =
+      0.5 * std::min(norm(tri_cross(s, s.faces[f])), norm(tri_cross(s, s.faces[g])));
+  // A corner's move shifts its face's centre by a third of it.
+  const double keep = 3.0 * kCloseCentreFraction * std::sqrt(area);
+  const Patch& patch = s.patches[s.vpatch[v]];
+  for (const double factor : {1.5, 2.5, 4.0}) {
+    const double step = factor * keep;
+    const SurfaceProjection pr =
+        closest_point(patch.surface, s.position[v] + step * d, s.uv[v].x, s.uv[v].y);
+    if (!pr.converged || !is_finite(pr.point) || pr.distance > step) continue;
+    const Placement to{pr.point, {pr.u, pr.v}, s.vpatch[v], s.source[v], s.spot[v].k};
+    if (try_place(s, v, to, deviation, true)) return true;
   }
-  s.uv[v] = new_uv;
-  s.vpatch[v] = new_patch;
-  s.source[v] = new_source;
-  s.spot[v].k = new_k;
-  return true;
+  return false;
+}
+
+// Panels back to back that no flip parts (a full Wigley's bow foot, where each half's stem runs
+// down beside the other's, a gap's width apart, to a keel the two share: the two panels there
+// have the keel edge and a stem vertex each) are parted by moving one of their corners that is
+// not a feature corner: along its line to a fine vertex, or on its patch away from the other
+// panel. Serial, in face order.
+std::size_t slide_apart(State& s) {
+  std::size_t slides = 0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (!s.face_alive[f]) continue;
+    for (int c = 0; c < 3; ++c) {
+      const Index g = back_to_back_partner(s, static_cast<Index>(f));
+      if (g == kInvalid) break;
+      const Index v = s.faces[f][c];
+      double deviation = 0;
+      bool moved = false;
+      if (s.kind[v] == Kind::kOnLine) moved = slide_on_line(s, v, deviation);
+      if (s.kind[v] == Kind::kSmooth) {
+        moved = slide_on_surface(s, v, static_cast<Index>(f), g, deviation);
+      }
+      if (moved) {
+        s.max_witness_distance = std::max(s.max_witness_distance, deviation);
+        ++slides;
+        break;
+      }
+    }
+  }
+  return slides;
 }
 
 std::size_t smooth_pass(State& s, std::vector<std::uint8_t>& held) {
@@ -315,6 +454,7 @@ ImproveCounts improve_panels(State& s, int passes) {
     counts.moves += smooth_pass(s, held);
   }
   counts.flips += flip_apart(s);
+  counts.moves += slide_apart(s);
   return counts;
 }
 
