@@ -125,6 +125,9 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
       std::printf("  overlap remnants lying on another patch across an edge dropped: %zu\n",
                   r.folded_faces_dropped);
     }
+    if (r.folds_welded > 0) {
+      std::printf("  folds closed (two faces on each other across an edge): %zu\n", r.folds_welded);
+    }
     if (r.gap_vertices_widened > 0) {
       std::printf("  tolerance widened to the gap measured at %zu border vertices (up to %.3g m)\n",
                   r.gap_vertices_widened, r.widened_to);

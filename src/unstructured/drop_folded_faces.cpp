@@ -14,6 +14,7 @@
 // (compact).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <tuple>
 #include <utility>
@@ -53,6 +54,10 @@ Index remnant_of(const SurfaceMesh& m, Index a, int open_a, Index b, int open_b)
              ? a
              : b;
 }
+
+// A fold's two third corners are welded when they lie within this share of the folded edge's
+// length of each other (measured: 1%), so that the weld moves the surface by a sliver's width.
+constexpr double kFoldWeldShare = 0.1;
 
 }  // namespace
 
@@ -152,6 +157,44 @@ FoldStats drop_inconsistent_remnants(Work& w, const EdgeAdjacency& adj) {
   }
   if (stats.faces > 0) compact_faces(w, keep);
   return stats;
+}
+
+std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const EdgeAdjacency& adj) {
+  const SurfaceMesh& m = w.mesh;
+  std::vector<std::pair<Index, Index>> welds;
+  std::vector<std::uint8_t> taken(m.vertex_count(), 0), inconsistent(adj.edges.size(), 0);
+  for (Index e : adj.inconsistent_edges) inconsistent[e] = 1;
+  for (std::size_t e = 0; e < adj.edges.size(); ++e) {
+    // collect: interior edges wound consistently; score: the faces' directions away from the edge.
+    const MeshEdge& edge = adj.edges[e];
+    if (edge.uses != 2 || inconsistent[e]) continue;
+    const Index a = edge.first_slot / 4, b = adj.opposite_face[edge.first_slot];
+    if (b == kInvalid) continue;
+    const Vec3d away_a = away_from_edge(m, m.faces[a], edge.v0, edge.v1);
+    const Vec3d away_b = away_from_edge(m, m.faces[b], edge.v0, edge.v1);
+    if (!(dot(away_a, away_b) >= kFoldCos)) continue;
+    // select: the third corners, near each other and in no other weld.
+    Index c = kInvalid, d = kInvalid;
+    for (int k = 0; k < 3; ++k) {
+      if (m.faces[a][k] != edge.v0 && m.faces[a][k] != edge.v1) c = m.faces[a][k];
+      if (m.faces[b][k] != edge.v0 && m.faces[b][k] != edge.v1) d = m.faces[b][k];
+    }
+    if (c == kInvalid || d == kInvalid || c == d || taken[c] || taken[d]) continue;
+    // Both faces slivers along the edge, their corners near each other: a sharp stem whose two
+    // halves meet at a few degrees (a Wigley's foot) has faces as wide as they are long, and
+    // stays.
+    const Vec3d& p0 = m.positions[edge.v0];
+    const Vec3d along = m.positions[edge.v1] - p0;
+    const double span = norm(along);
+    const auto width = [&](Index x) { return norm(cross(along, m.positions[x] - p0)) / span; };
+    const double most = kFoldWeldShare * span;
+    if (!(width(c) < most && width(d) < most && norm(m.positions[c] - m.positions[d]) < most)) {
+      continue;
+    }
+    taken[c] = taken[d] = 1;
+    welds.emplace_back(std::max(c, d), std::min(c, d));
+  }
+  return welds;
 }
 
 }  // namespace hm::merge

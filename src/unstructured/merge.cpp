@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -222,6 +223,32 @@ void drop_folds(merge::Work& w, EdgeAdjacency& adj, const MergeOptions& options,
   r.holes_filled += fill_holes(w, adj, options, length, left_open);
 }
 
+// Folds on interior edges (folded_edge_welds): the two third corners of each are welded and the
+// double layer that makes goes. Kept only when the surface has no more non-manifold or
+// inconsistent edges and no more boundary loops than before; a merge with no fold is untouched.
+void weld_folds(merge::Work& w, EdgeAdjacency& adj, double length, MergeReport& r) {
+  const std::vector<std::pair<Index, Index>> welds = merge::folded_edge_welds(w, adj);
+  if (welds.empty()) return;
+  merge::Work before = w;
+  std::vector<Index> onto(w.mesh.vertex_count());
+  std::iota(onto.begin(), onto.end(), Index{0});
+  for (const auto& [from, to] : welds) onto[from] = to;
+  for (Face& t : w.mesh.faces) {
+    for (int c = 0; c < 3; ++c) t[c] = onto[t[c]];
+  }
+  const std::size_t dropped = merge::drop_degenerate(w, length);
+  EdgeAdjacency again = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  if (again.nonmanifold_edges.size() > adj.nonmanifold_edges.size() ||
+      again.inconsistent_edges.size() > adj.inconsistent_edges.size() ||
+      again.boundary_loops.size() > adj.boundary_loops.size()) {
+    w = std::move(before);
+    return;
+  }
+  r.folds_welded = welds.size();
+  r.degenerate_faces_dropped += dropped;
+  adj = std::move(again);
+}
+
 }  // namespace
 
 MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& triangulation,
@@ -273,6 +300,7 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
         w, adj, options.gap_tolerance > 0 ? options.gap_tolerance : kWidestGap * length);
   }
   if (r.gaps_bridged > 0) adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  weld_folds(w, adj, length, r);
   r.vertices_welded = s.welded;
   r.tjunctions_split = s.split;
   r.gaps_closed = s.gaps_closed;

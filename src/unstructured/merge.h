@@ -68,6 +68,9 @@ struct MergeReport {
   // Faces of one patch the snap laid on another's across a shared edge (an edge with three
   // faces), dropped as overlap remnants; their area is in overlap_area_removed.
   std::size_t folded_faces_dropped = 0;
+  // Interior edges whose two faces lay on each other (a fold of slivers the overlap cut left
+  // along a chine), closed by welding the faces' third corners.
+  std::size_t folds_welded = 0;
   std::size_t holes_filled = 0;  // corner holes of 3-4 vertices between patches, closed
   // The result's topology (from its edge adjacency).
   std::size_t boundary_loops = 0;

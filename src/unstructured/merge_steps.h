@@ -109,6 +109,18 @@ FoldStats drop_folded_faces(Work& w, const EdgeAdjacency& adj);
 // removes the unused ones).
 FoldStats drop_inconsistent_remnants(Work& w, const EdgeAdjacency& adj);
 
+// Interior edges (two faces, wound consistently) whose two faces lie on each other: both on the
+// same side of the edge, within 20 degrees, so that the surface folds back there and the faces
+// pass through their neighbours. The overlap cut leaves such a fold of slivers along a chine
+// where the cut of two overlapping patches runs along the knuckle (property seed 3553: two
+// slivers 0.29 m long on one edge, 2-5 mm wide, their third corners 3 mm apart). Returns, for
+// each fold of two slivers (each third corner within kFoldWeldShare of the edge's length of
+// the edge) whose third corners lie as near each other, the pair (higher index, lower index)
+// to weld: welded, the two faces are the same
+// corners wound against each other, a double layer that drop_degenerate removes. A vertex is
+// in one pair at most; pairs in edge order.
+std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const EdgeAdjacency& adj);
+
 // Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
 // number of faces dropped.
 std::size_t drop_degenerate(Work& w, double length);

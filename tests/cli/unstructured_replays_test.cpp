@@ -7,6 +7,9 @@
 //     their other edges lead to slivers across the gap between the stems (1 or 2 pairs of very
 //     close panel centres each). A stem corner now slides along its line or on its patch
 //     (slide_apart in improve_panels.cpp).
+//   - seed 3553: a chine hull with gaps and overlaps, where the overlap cut left a fold of two
+//     slivers along the chine near the bow (two faces on each other across an edge), and one pair
+//     of panels passed through each other there (folded_edge_welds in drop_folded_faces.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -45,6 +48,10 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "wigley --length 129.051 --beam 24.2532 --draft 7.89993 --depth 11.0358 --patches 7 "
        "--seed 3722 --full --gap 0.0129051 --duplicate-points --flip-every 2",
        "8.272807", 800},
+      {"chine 3553",
+       "chine --length 69.007 --beam 5.95134 --draft 1.68361 --depth 2.15818 --patches 15 "
+       "--seed 3553 --gap 0.0069007 --overlap 0.05",
+       "1.462128", 400},
   };
   const fs::path dir = test::scratch_dir("cli_unstructured_replays");
   for (const Replay& c : cases) {

@@ -59,6 +59,26 @@ TEST(MergeSteps, SheetsMeetingAtWideAnglesOrOnePatchsFacesStay) {
   EXPECT_EQ(merge::drop_folded_faces(own, build_edge_adjacency(own.mesh.faces, 5)).faces, 0u);
 }
 
+// Two slivers along one edge, wound consistently but both on its +y side (the surface folds back
+// there): their third corners, 2 mm apart on a 1 m edge, are to be welded, the higher index onto
+// the lower. A knife-edge stem, two faces as wide as they are long meeting at 10 degrees, is no
+// fold; nor are two slivers whose corners lie far apart along the edge.
+TEST(MergeSteps, AFoldOfTwoSliversIsWeldedButAKnifeEdgeIsNot) {
+  merge::Work fold = work_of({{0, 0, 0}, {1, 0, 0}, {0.4, 0.005, 0}, {0.401, 0.006, 0.001}},
+                             {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}}, {0, 1});
+  const auto welds = merge::folded_edge_welds(fold, build_edge_adjacency(fold.mesh.faces, 4));
+  ASSERT_EQ(welds.size(), 1u);
+  EXPECT_EQ(welds[0], (std::pair<Index, Index>{3, 2}));
+  const double s = std::sin(5.0 * std::numbers::pi / 180),
+               c = std::cos(5.0 * std::numbers::pi / 180);
+  merge::Work knife = work_of({{0, 0, 0}, {1, 0, 0}, {0.5, s, c}, {0.5, -s, c}},
+                              {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}}, {0, 1});
+  EXPECT_TRUE(merge::folded_edge_welds(knife, build_edge_adjacency(knife.mesh.faces, 4)).empty());
+  merge::Work apart = work_of({{0, 0, 0}, {1, 0, 0}, {0.2, 0.005, 0}, {0.8, 0.006, 0.001}},
+                              {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}}, {0, 1});
+  EXPECT_TRUE(merge::folded_edge_welds(apart, build_edge_adjacency(apart.mesh.faces, 4)).empty());
+}
+
 // The generated 100-patch chine hull with 5 cm gaps and 5% overlaps, at its default size: where
 // four patch corners meet near the chine aft, the snap laid a sliver of patch 31 on patch 30's
 // face across their shared edge, and no retry undid it. The merge stopped with one edge of three
