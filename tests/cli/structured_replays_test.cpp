@@ -13,29 +13,12 @@
 //     lay across the next row's: 4 pairs of panels passed through each other;
 //   - seed 2563: a raked stem above a bulb, whose end cap folded two triangles onto each other
 //     (2 pairs of very close panel centres, one on each side of the mirrored hull).
-#include <gtest/gtest.h>
-
-#include <filesystem>
-#include <nlohmann/json.hpp>
-#include <string>
-
-#include "support/test_json.h"
-#include "support/test_support.h"
+#include "support/replay.h"
 
 namespace hm {
 namespace {
 
-namespace fs = std::filesystem;
-using test::is_share_rule;
-using test::q;
-using test::run_hullmesh;
-
-struct Replay {
-  const char* name;
-  const char* generate;  // `hullmesh generate` arguments
-  const char* draft;     // m
-  int panels;
-};
+using test::Replay;
 
 TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
   const Replay cases[] = {
@@ -60,21 +43,7 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
        "--seed 2563 --full --gap 0.016718 --overlap 0.05 --duplicate-points",
        "10.074240", 700},
   };
-  const fs::path dir = test::scratch_dir("cli_structured_replays");
-  for (const Replay& c : cases) {
-    const fs::path igs = dir / "hull.igs", out = dir / "panels.obj";
-    ASSERT_EQ(run_hullmesh(std::string("-q generate ") + c.generate + " -o " + q(igs)).exit_code, 0)
-        << c.name;
-    const auto r = run_hullmesh("-q --validate structured " + q(igs) + " -o " + q(out) +
-                                " --panels " + std::to_string(c.panels) + " --draft " + c.draft);
-    ASSERT_EQ(r.exit_code, 0) << c.name << ": " << r.out;
-    const nlohmann::json record = test::read_json(fs::path(out).replace_extension(".run.json"));
-    ASSERT_TRUE(record.is_object()) << c.name;
-    EXPECT_EQ(record["quality"]["free_edges_below_waterline"], 0) << c.name;
-    for (const std::string failure : record["quality"]["failures"]) {
-      EXPECT_TRUE(is_share_rule(failure)) << c.name << ": " << failure;
-    }
-  }
+  test::expect_replays_break_no_hard_rule("structured", cases, "cli_structured_replays");
 }
 
 }  // namespace

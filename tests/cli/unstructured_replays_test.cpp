@@ -10,29 +10,12 @@
 //   - seed 3553: a chine hull with gaps and overlaps, where the overlap cut left a fold of two
 //     slivers along the chine near the bow (two faces on each other across an edge), and one pair
 //     of panels passed through each other there (folded_edge_welds in drop_folded_faces.cpp).
-#include <gtest/gtest.h>
-
-#include <filesystem>
-#include <nlohmann/json.hpp>
-#include <string>
-
-#include "support/test_json.h"
-#include "support/test_support.h"
+#include "support/replay.h"
 
 namespace hm {
 namespace {
 
-namespace fs = std::filesystem;
-using test::is_share_rule;
-using test::q;
-using test::run_hullmesh;
-
-struct Replay {
-  const char* name;
-  const char* generate;  // `hullmesh generate` arguments
-  const char* draft;     // m
-  int panels;
-};
+using test::Replay;
 
 TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
   const Replay cases[] = {
@@ -53,21 +36,7 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "--seed 3553 --gap 0.0069007 --overlap 0.05",
        "1.462128", 400},
   };
-  const fs::path dir = test::scratch_dir("cli_unstructured_replays");
-  for (const Replay& c : cases) {
-    const fs::path igs = dir / "hull.igs", out = dir / "panels.obj";
-    ASSERT_EQ(run_hullmesh(std::string("-q generate ") + c.generate + " -o " + q(igs)).exit_code, 0)
-        << c.name;
-    const auto r = run_hullmesh("-q --validate unstructured " + q(igs) + " -o " + q(out) +
-                                " --panels " + std::to_string(c.panels) + " --draft " + c.draft);
-    ASSERT_EQ(r.exit_code, 0) << c.name << ": " << r.out;
-    const nlohmann::json record = test::read_json(fs::path(out).replace_extension(".run.json"));
-    ASSERT_TRUE(record.is_object()) << c.name;
-    EXPECT_EQ(record["quality"]["free_edges_below_waterline"], 0) << c.name;
-    for (const std::string failure : record["quality"]["failures"]) {
-      EXPECT_TRUE(is_share_rule(failure)) << c.name << ": " << failure;
-    }
-  }
+  test::expect_replays_break_no_hard_rule("unstructured", cases, "cli_unstructured_replays");
 }
 
 }  // namespace
