@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/parallel.h"
 #include "unstructured/merge_steps.h"
 
 namespace hm::merge {
@@ -162,14 +163,26 @@ FoldStats drop_inconsistent_remnants(Work& w, const EdgeAdjacency& adj) {
 std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const EdgeAdjacency& adj) {
   const SurfaceMesh& m = w.mesh;
   std::vector<std::pair<Index, Index>> welds;
+  // A face can be a sliver along one of its edges only if twice its area is under
+  // kFoldWeldShare of its longest edge squared (its width over any edge is at least that share
+  // of that edge): only edges between two such faces are looked at.
+  std::vector<std::uint8_t> thin(m.face_count(), 0);
+  parallel_for(0, m.face_count(), [&](std::size_t f) {
+    const Face& t = m.faces[f];
+    const Vec3d &p = m.positions[t[0]], &q = m.positions[t[1]], &r = m.positions[t[2]];
+    const double longest2 =
+        std::max({squared_norm(q - p), squared_norm(r - q), squared_norm(p - r)});
+    thin[f] = norm(cross(q - p, r - p)) < kFoldWeldShare * longest2;
+  });
   std::vector<std::uint8_t> taken(m.vertex_count(), 0), inconsistent(adj.edges.size(), 0);
   for (Index e : adj.inconsistent_edges) inconsistent[e] = 1;
   for (std::size_t e = 0; e < adj.edges.size(); ++e) {
-    // collect: interior edges wound consistently; score: the faces' directions away from the edge.
+    // collect: interior edges wound consistently between two thin faces; score: the faces'
+    // directions away from the edge.
     const MeshEdge& edge = adj.edges[e];
     if (edge.uses != 2 || inconsistent[e]) continue;
     const Index a = edge.first_slot / 4, b = adj.opposite_face[edge.first_slot];
-    if (b == kInvalid) continue;
+    if (b == kInvalid || !thin[a] || !thin[b]) continue;
     const Vec3d away_a = away_from_edge(m, m.faces[a], edge.v0, edge.v1);
     const Vec3d away_b = away_from_edge(m, m.faces[b], edge.v0, edge.v1);
     if (!(dot(away_a, away_b) >= kFoldCos)) continue;
