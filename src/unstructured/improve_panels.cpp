@@ -198,6 +198,18 @@ bool line_placement(const State& s, Index v, Index k, Placement& to) {
   return true;
 }
 
+// A live face sharing a corner with face f (across an edge or at a corner alone) and lying back
+// to back with it; kInvalid when none.
+Index back_to_back_partner(const State& s, Index f) {
+  const auto& t = s.faces[f];
+  for (Index v : t) {
+    for (Index g : s.vertex_faces[v]) {
+      if (g != f && back_to_back(s, t, s.faces[g])) return g;
+    }
+  }
+  return kInvalid;
+}
+
 // Moves v to `to` when its panels allow it; returns true when moved. Normally the panels must
 // get better (the worst no worse, or all fair and their sum higher). `apart` (a slide to part
 // panels lying back to back) asks instead that no panel of the star lie back to back with a
@@ -236,10 +248,7 @@ bool try_place(State& s, Index v, const Placement& to, double& deviation, bool a
     // A slide apart may keep a panel that stood off the hull's normal already (a sliver across
     // the gap between a full hull's two stems stands square to both halves).
     if (ok && !(apart && !near_rest(t, old_normal[i]))) ok = near_rest(t, m);
-    if (ok && apart) {
-      const Index self[1] = {star[i]};
-      ok = !back_to_back_across(s, t, self);
-    }
+    if (ok && apart) ok = back_to_back_partner(s, star[i]) == kInvalid;
     const double q = tri_shape(s, t);
     new_min = std::min(new_min, q);
     new_sum += q;
@@ -294,19 +303,6 @@ bool try_move(State& s, Index v, double& deviation) {
     if (k == s.spot[v].k || !line_placement(s, v, k, to)) return false;
   }
   return try_place(s, v, to, deviation);
-}
-
-// A live face lying back to back with face f across one of its edges; kInvalid when none.
-Index back_to_back_partner(const State& s, Index f) {
-  const auto& t = s.faces[f];
-  for (int e = 0; e < 3; ++e) {
-    for (Index g : s.vertex_faces[t[e]]) {
-      if (g != f && has_corner(s.faces[g], t[(e + 1) % 3]) && back_to_back(s, t, s.faces[g])) {
-        return g;
-      }
-    }
-  }
-  return kInvalid;
 }
 
 // Slides line vertex v along its line to the nearest fine vertex, on either side and within its

@@ -6,7 +6,8 @@
 //     each half, with the keel edge in common and a stem corner each; no flip parts them, since
 //     their other edges lead to slivers across the gap between the stems (1 or 2 pairs of very
 //     close panel centres each). A stem corner now slides along its line or on its patch
-//     (slide_apart in improve_panels.cpp).
+//     (slide_apart in improve_panels.cpp). Seed 4506 is the same foot, where the two panels
+//     share only a corner (the flips and the first slide looked across edges alone).
 //   - seed 3553: a chine hull with gaps and overlaps, where the overlap cut left a fold of two
 //     slivers along the chine near the bow (two faces on each other across an edge), and one pair
 //     of panels passed through each other there (folded_edge_welds in drop_folded_faces.cpp).
@@ -31,6 +32,10 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "wigley --length 129.051 --beam 24.2532 --draft 7.89993 --depth 11.0358 --patches 7 "
        "--seed 3722 --full --gap 0.0129051 --duplicate-points --flip-every 2",
        "8.272807", 800},
+      {"wigley 4506",
+       "wigley --length 94.4517 --beam 12.8507 --draft 3.27848 --depth 4.6664 --patches 5 "
+       "--seed 4506 --full --gap 0.00944517 --duplicate-points --flip-every 2",
+       "3.07659", 500},
       {"chine 3553",
        "chine --length 69.007 --beam 5.95134 --draft 1.68361 --depth 2.15818 --patches 15 "
        "--seed 3553 --gap 0.0069007 --overlap 0.05",
