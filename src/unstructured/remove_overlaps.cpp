@@ -93,13 +93,20 @@ ClosestPoint closest_alike(const HullQuery& q, std::span<const Patch> patches, c
 }
 
 // The nearest patch below the vertex's own whose surface the vertex lies on with an agreeing
-// normal, or kInvalid.
+// normal, or kInvalid. The vertex's own normal is taken kBeside inside its patch's domain: on
+// a border the evaluation may fall into the knot span outside the domain, whose surface need not
+// go on smoothly (property seed 4877: a patch's border at its domain's start, where the normal
+// came out along x on a side lying in y, so that none of its border vertices counted as on the
+// patch it overlapped, and the overlap of 1.7 m was not cut).
 PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
                        Index v, double distance) {
   const PatchId own = m.vertex_patch[v];
   if (own == 0) return kInvalid;
+  const NurbsSurface& s = patches[own].surface;
+  const double du = kBeside * (s.u1 - s.u0), dv = kBeside * (s.v1 - s.v0);
   const Vec2d uv = m.vertex_uv[v];
-  const Vec3d n = normal(patches[own].surface, uv.x, uv.y);
+  const Vec3d n =
+      normal(s, std::clamp(uv.x, s.u0 + du, s.u1 - du), std::clamp(uv.y, s.v0 + dv, s.v1 - dv));
   return closest_alike(q, patches, m.positions[v], n, 0, own, distance).patch;
 }
 

@@ -29,5 +29,25 @@ TEST(MergeOverlap, OverlapsAcrossAChineInsideThePatchesAreCutAway) {
   EXPECT_EQ(x.count, 0u) << "first near " << (x.first.empty() ? Vec3d{} : x.first[0].where).x;
 }
 
+// A full round-bilge hull of 9 patches overlapping by 5% (property seed 4877): the starboard
+// patch that runs from 13.8 to 30.1 m overlaps the next one forward (from 28.4 m) by 1.7 m. Its
+// border vertices there lie on that patch, but the normal taken at its domain's start fell into
+// the knot span outside the domain and pointed along x: no vertex counted as on the patch below,
+// the overlap stayed, the snap welded the two layers into each other, and the merged surface
+// passed through itself 137 times with three holes. The overlap must be cut: one boundary loop
+// (the deck edge), no gap left open, no crossing.
+TEST(MergeOverlap, APatchWhoseNormalAtItsDomainsStartIsOffStillHasItsOverlapCut) {
+  HullSpec spec = hull_spec(HullKind::kRoundBilge, 43.6711, 3.95597, 1.13672, 1.69342, 9, true);
+  spec.defects.seed = 4877;
+  spec.defects.overlap = 0.05;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const Merged m = merge_of(patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  EXPECT_TRUE(m.merged.report.open_gaps.empty());
+  const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);
+  EXPECT_EQ(x.count, 0u) << "first near " << (x.first.empty() ? Vec3d{} : x.first[0].where).x;
+}
+
 }  // namespace
 }  // namespace hm::test
