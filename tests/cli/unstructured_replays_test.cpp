@@ -11,6 +11,10 @@
 //   - seed 3553: a chine hull with gaps and overlaps, where the overlap cut left a fold of two
 //     slivers along the chine near the bow (two faces on each other across an edge), and one pair
 //     of panels passed through each other there (folded_edge_welds in drop_folded_faces.cpp).
+//   - seeds 4295 and 4943: chine hulls whose waterline, near the bow, ran back on itself by 4 and
+//     1.6 cm: a crossing refined along its edge's parameter line ran along the plane past the
+//     next one, and the split faces there passed through each other (1-2 pairs of panels); the
+//     cut keeps each triangle's crossings in their linear order (cut_at_plane.cpp).
 #include "support/replay.h"
 
 namespace hm {
@@ -36,6 +40,14 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "wigley --length 94.4517 --beam 12.8507 --draft 3.27848 --depth 4.6664 --patches 5 "
        "--seed 4506 --full --gap 0.00944517 --duplicate-points --flip-every 2",
        "3.07659", 500},
+      {"chine 4295",
+       "chine --length 143.954 --beam 13.7702 --draft 3.92794 --depth 5.87644 --patches 7 "
+       "--seed 4295 --full --flip-every 4",
+       "2.63679", 900},
+      {"chine 4943",
+       "chine --length 125.177 --beam 14.6173 --draft 5.50522 --depth 8.36093 --patches 12 "
+       "--seed 4943 --duplicate-points --flip-every 2",
+       "4.51729", 600},
       {"chine 3553",
        "chine --length 69.007 --beam 5.95134 --draft 1.68361 --depth 2.15818 --patches 15 "
        "--seed 3553 --gap 0.0069007 --overlap 0.05",
