@@ -187,6 +187,65 @@ query::RefinedPlanePoint refine_crossing(std::span<const Patch> patches,
   return best;
 }
 
+// A crossing refined along its edge's parameter line may run along the plane past the crossing
+// of the triangle's other cut edge (property seed 4295: 6 cm forward on a 0.57 m edge of a chine
+// hull's side near the bow, past its neighbour's crossing), and the cut line then runs back on
+// itself, with the split pieces over each other. In each triangle the cut runs from crossing to
+// crossing (or from its corner in the plane to its crossing) the way the linear crossings'
+// segment does; where it does not, its crossings go back to their linear places on the chord,
+// flagged in `missed` (not refined). cut_edges: sorted edge keys, whose crossings are the
+// vertices first_new + slot of m. In face order.
+void keep_crossings_in_order(const SurfaceMesh& mesh, const AxisPlane& plane,
+                             std::span<const std::pair<std::uint64_t, PatchId>> cut_edges,
+                             Index first_new, SurfaceMesh& m, std::vector<std::uint8_t>& missed) {
+  const auto side = [&](Index v) {
+    const double d = plane.side(m.positions[v]);
+    return d > 0 ? 1 : (d < 0 ? -1 : 0);
+  };
+  const auto slot_of = [&](Index a, Index b) {
+    const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+    return static_cast<std::size_t>(
+        std::lower_bound(cut_edges.begin(), cut_edges.end(), key,
+                         [](const auto& entry, std::uint64_t k) { return entry.first < k; }) -
+        cut_edges.begin());
+  };
+  const auto linear = [&](Index a, Index b) {
+    const Vec3d pa = m.positions[a], pb = m.positions[b];
+    const double t = plane.side(pa) / (plane.side(pa) - plane.side(pb));
+    return plane.on_plane(pa + t * (pb - pa));
+  };
+  std::array<std::array<Index, 3>, 2> tris;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const int n = face_triangles(mesh.faces[f], tris);
+    for (int t = 0; t < n; ++t) {
+      // The triangle's cut, as two ends: a crossing (its edge's slot) or a corner in the plane
+      // (slot cut_edges.size()).
+      std::size_t slots[2];
+      Vec3d ends[2], lin[2];
+      int count = 0;
+      for (int k = 0; k < 3; ++k) {
+        const Index a = tris[t][k], b = tris[t][(k + 1) % 3];
+        const bool corner = side(a) == 0, crossing = side(a) * side(b) < 0;
+        if (!corner && !crossing) continue;
+        if (count < 2) {
+          slots[count] = corner ? cut_edges.size() : slot_of(a, b);
+          ends[count] = corner ? m.positions[a] : m.positions[first_new + slots[count]];
+          lin[count] = corner ? m.positions[a] : linear(a, b);
+        }
+        ++count;
+      }
+      if (count != 2 || dot(ends[1] - ends[0], lin[1] - lin[0]) > 0) continue;
+      for (int k = 0; k < 2; ++k) {
+        if (slots[k] == cut_edges.size()) continue;
+        const Index a = static_cast<Index>(cut_edges[slots[k]].first >> 32);
+        const Index b = static_cast<Index>(cut_edges[slots[k]].first & 0xffffffffu);
+        m.positions[first_new + slots[k]] = linear(a, b);
+        missed[slots[k]] = 1;
+      }
+    }
+  }
+}
+
 // For each new vertex first_new + i, the vertex it is: the lowest-numbered vertex within `tol`
 // of it among the new ones and those in the plane (side 0). Sorted along an axis of the plane
 // (`along`) and swept, so the work is the number of points times the few within tol along it.
@@ -376,56 +435,7 @@ PlaneCut cut_at_plane(std::span<const Patch> patches, const SurfaceMesh& mesh,
     m.vertex_uv[first_new + e] = r.uv;
     m.vertex_patch[first_new + e] = used;
   });
-  // A crossing refined along its edge's parameter line may run along the plane past the crossing
-  // of the triangle's other cut edge (property seed 4295: 6 cm forward on a 0.57 m edge of a
-  // chine hull's side near the bow, past its neighbour's crossing), and the cut line then runs
-  // back on itself, with the split pieces over each other. In each triangle the cut runs from
-  // crossing to crossing (or from its corner in the plane to its crossing) the way the linear
-  // crossings' segment does; where it does not, its crossings go back to their linear places on
-  // the chord, counted as not refined. In face order.
-  {
-    const auto slot_of = [&](Index a, Index b) {
-      const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
-      return static_cast<std::size_t>(
-          std::lower_bound(cut_edges.begin(), cut_edges.end(), key,
-                           [](const auto& entry, std::uint64_t k) { return entry.first < k; }) -
-          cut_edges.begin());
-    };
-    const auto linear = [&](Index a, Index b) {
-      const Vec3d pa = m.positions[a], pb = m.positions[b];
-      const double t = plane.side(pa) / (plane.side(pa) - plane.side(pb));
-      return plane.on_plane(pa + t * (pb - pa));
-    };
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      const int n = face_triangles(mesh.faces[f], tris);
-      for (int t = 0; t < n; ++t) {
-        // The triangle's cut, as two ends: a crossing (its edge's slot) or a corner in the plane
-        // (slot cut_edges.size()).
-        std::size_t slots[2];
-        Vec3d ends[2], lin[2];
-        int count = 0;
-        for (int k = 0; k < 3; ++k) {
-          const Index a = tris[t][k], b = tris[t][(k + 1) % 3];
-          const bool corner = side(a) == 0, crossing = side(a) * side(b) < 0;
-          if (!corner && !crossing) continue;
-          if (count < 2) {
-            slots[count] = corner ? cut_edges.size() : slot_of(a, b);
-            ends[count] = corner ? m.positions[a] : m.positions[first_new + slots[count]];
-            lin[count] = corner ? m.positions[a] : linear(a, b);
-          }
-          ++count;
-        }
-        if (count != 2 || dot(ends[1] - ends[0], lin[1] - lin[0]) > 0) continue;
-        for (int k = 0; k < 2; ++k) {
-          if (slots[k] == cut_edges.size()) continue;
-          const Index a = static_cast<Index>(cut_edges[slots[k]].first >> 32);
-          const Index b = static_cast<Index>(cut_edges[slots[k]].first & 0xffffffffu);
-          m.positions[first_new + slots[k]] = linear(a, b);
-          missed[slots[k]] = 1;
-        }
-      }
-    }
-  }
+  keep_crossings_in_order(mesh, plane, cut_edges, first_new, m, missed);
   // Crossings refined to one point are one vertex: two edges of a face that leave their patch
   // at its corner in the plane, or a crossing that lands on a vertex already there, would
   // otherwise give a face with no area between them (a full round-bilge hull's keel under the

@@ -247,7 +247,8 @@ bool try_place(State& s, Index v, const Placement& to, double& deviation, bool a
     ok = lm > 0 && dot(m, old_normal[i]) >= s.cos_normal_change * lm * norm(old_normal[i]);
     // A slide apart may keep a panel that stood off the hull's normal already (a sliver across
     // the gap between a full hull's two stems stands square to both halves).
-    if (ok && !(apart && !near_rest(t, old_normal[i]))) ok = near_rest(t, m);
+    const bool was_off_rest = apart && !near_rest(t, old_normal[i]);
+    if (ok && !was_off_rest) ok = near_rest(t, m);
     if (ok && apart) ok = back_to_back_partner(s, star[i]) == kInvalid;
     const double q = tri_shape(s, t);
     new_min = std::min(new_min, q);
