@@ -93,11 +93,13 @@ ClosestPoint closest_alike(const HullQuery& q, std::span<const Patch> patches, c
 }
 
 // The nearest patch below the vertex's own whose surface the vertex lies on with an agreeing
-// normal, or kInvalid. The vertex's own normal is taken kBeside inside its patch's domain: on
-// a border the evaluation may fall into the knot span outside the domain, whose surface need not
-// go on smoothly (property seed 4877: a patch's border at its domain's start, where the normal
-// came out along x on a side lying in y, so that none of its border vertices counted as on the
-// patch it overlapped, and the overlap of 1.7 m was not cut).
+// normal, or kInvalid. The vertex's own normal is taken kBeside inside its patch's domain: a
+// knot vector may hold a span of almost no width at a border (property seed 4877: an interior
+// knot 1.1e-16 after the clamped start, from the generator's arithmetic), and the derivatives
+// evaluated in it are noise; there the normal came out along x on a side lying in y, none of
+// the patch's border vertices counted as on the patch it overlapped, and the overlap of 1.7 m
+// was not cut. (The span choice of the NURBS kernel, not this caller, is where such spans
+// should be stepped over; see the README.)
 PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
                        Index v, double distance) {
   const PatchId own = m.vertex_patch[v];
