@@ -93,22 +93,14 @@ ClosestPoint closest_alike(const HullQuery& q, std::span<const Patch> patches, c
 }
 
 // The nearest patch below the vertex's own whose surface the vertex lies on with an agreeing
-// normal, or kInvalid. The vertex's own normal is taken kBeside inside its patch's domain: a
-// knot vector may hold a span of almost no width at a border (property seed 4877: an interior
-// knot 1.1e-16 after the clamped start, from the generator's arithmetic), and the derivatives
-// evaluated in it are noise; there the normal came out along x on a side lying in y, none of
-// the patch's border vertices counted as on the patch it overlapped, and the overlap of 1.7 m
-// was not cut. (The span choice of the NURBS kernel, not this caller, is where such spans
-// should be stepped over; see the README.)
+// normal, or kInvalid. (Its own normal at a domain border once came out as noise, property seed
+// 4877: the knot span there was 1.1e-16 wide; the kernel's find_span now steps over such spans.)
 PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
                        Index v, double distance) {
   const PatchId own = m.vertex_patch[v];
   if (own == 0) return kInvalid;
-  const NurbsSurface& s = patches[own].surface;
-  const double du = kBeside * (s.u1 - s.u0), dv = kBeside * (s.v1 - s.v0);
   const Vec2d uv = m.vertex_uv[v];
-  const Vec3d n =
-      normal(s, std::clamp(uv.x, s.u0 + du, s.u1 - du), std::clamp(uv.y, s.v0 + dv, s.v1 - dv));
+  const Vec3d n = normal(patches[own].surface, uv.x, uv.y);
   return closest_alike(q, patches, m.positions[v], n, 0, own, distance).patch;
 }
 
