@@ -42,6 +42,14 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
        "round-bilge --length 167.18 --beam 32.2189 --draft 9.26486 --depth 11.216 --patches 11 "
        "--seed 2563 --full --gap 0.016718 --overlap 0.05 --duplicate-points",
        "10.074240", 700},
+      {"transom immersed 5.5 mm 4424",
+       "round-bilge --length 150.953 --beam 18.3492 --draft 7.44064 --depth 9.28952 --patches 16 "
+       "--seed 4424 --full --duplicate-points --flip-every 3",
+       "4.647969", 300},
+      {"chine stem 4058",
+       "chine --length 192.815 --beam 16.0739 --draft 5.01366 --depth 6.76159 --patches 6 "
+       "--seed 4058 --full --gap 0.0192815 --flip-every 4",
+       "5.208077", 300},
   };
   test::expect_replays_break_no_hard_rule("structured", cases, "cli_structured_replays");
 }
