@@ -165,24 +165,42 @@ std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const Edge
   std::vector<std::pair<Index, Index>> welds;
   // A face can be a sliver along one of its edges only if twice its area is under
   // kFoldWeldShare of its longest edge squared (its width over any edge is at least that share
-  // of that edge): only edges between two such faces are looked at.
+  // of that edge). A flap, a wider face folded flat, faces against its neighbours across two or
+  // more of its edges. Only edges between two thin faces, or between two faces whose normals are
+  // within kFoldCos of opposite with one of them such a flap, are looked at.
   std::vector<std::uint8_t> thin(m.face_count(), 0);
+  std::vector<Vec3d> normal(m.face_count());
   parallel_for(0, m.face_count(), [&](std::size_t f) {
     const Face& t = m.faces[f];
     const Vec3d &p = m.positions[t[0]], &q = m.positions[t[1]], &r = m.positions[t[2]];
     const double longest2 =
         std::max({squared_norm(q - p), squared_norm(r - q), squared_norm(p - r)});
-    thin[f] = norm(cross(q - p, r - p)) < kFoldWeldShare * longest2;
+    const Vec3d n = cross(q - p, r - p);
+    const double twice_area = norm(n);
+    thin[f] = twice_area < kFoldWeldShare * longest2;
+    normal[f] = twice_area > 0 ? n / twice_area : Vec3d{};
+  });
+  const auto turned = [&](Index f, Index g) { return dot(normal[f], normal[g]) <= -kFoldCos; };
+  std::vector<std::uint8_t> flap(m.face_count(), 0);
+  parallel_for(0, m.face_count(), [&](std::size_t f) {
+    int against = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Index g = adj.opposite_face[4 * f + k];
+      against += g != kInvalid && turned(static_cast<Index>(f), g);
+    }
+    flap[f] = against >= 2;
   });
   std::vector<std::uint8_t> taken(m.vertex_count(), 0), inconsistent(adj.edges.size(), 0);
   for (Index e : adj.inconsistent_edges) inconsistent[e] = 1;
   for (std::size_t e = 0; e < adj.edges.size(); ++e) {
-    // collect: interior edges wound consistently between two thin faces; score: the faces'
-    // directions away from the edge.
+    // collect: interior edges wound consistently between two thin faces or two faces turned
+    // against each other; score: the faces' directions away from the edge.
     const MeshEdge& edge = adj.edges[e];
     if (edge.uses != 2 || inconsistent[e]) continue;
     const Index a = edge.first_slot / 4, b = adj.opposite_face[edge.first_slot];
-    if (b == kInvalid || !thin[a] || !thin[b]) continue;
+    if (b == kInvalid) continue;
+    const bool slivers = thin[a] && thin[b];
+    if (!slivers && !((flap[a] || flap[b]) && turned(a, b))) continue;
     const Vec3d away_a = away_from_edge(m, m.faces[a], edge.v0, edge.v1);
     const Vec3d away_b = away_from_edge(m, m.faces[b], edge.v0, edge.v1);
     if (!(dot(away_a, away_b) >= kFoldCos)) continue;
@@ -193,17 +211,24 @@ std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const Edge
       if (m.faces[b][k] != edge.v0 && m.faces[b][k] != edge.v1) d = m.faces[b][k];
     }
     if (c == kInvalid || d == kInvalid || c == d || taken[c] || taken[d]) continue;
-    // Both faces slivers along the edge, their corners near each other: a sharp stem whose two
-    // halves meet at a few degrees (a Wigley's foot) has faces as wide as they are long, and
-    // stays.
     const Vec3d& p0 = m.positions[edge.v0];
     const Vec3d along = m.positions[edge.v1] - p0;
     const double span = norm(along);
-    const auto width = [&](Index x) { return norm(cross(along, m.positions[x] - p0)) / span; };
     const double most = kFoldWeldShare * span;
-    if (!(width(c) < most && width(d) < most && norm(m.positions[c] - m.positions[d]) < most)) {
-      continue;
+    const Vec3d apart = m.positions[c] - m.positions[d];
+    if (!(norm(apart) < most)) continue;
+    if (slivers) {
+      // Both faces slivers along the edge, their corners near each other: a sharp stem whose
+      // two halves meet at a few degrees (a Wigley's foot) has faces as wide as they are long,
+      // and stays.
+      const auto width = [&](Index x) { return norm(cross(along, m.positions[x] - p0)) / span; };
+      if (!(width(c) < most && width(d) < most)) continue;
     }
+    // Otherwise one face is a flap lying over the other upside down (property seed 4140: a
+    // port face whose third corner was a keel vertex 0.08 m from the starboard face's, over the
+    // starboard faces and turned against all three of them). A stem's two halves meeting at a
+    // fraction of a degree (a full Wigley's foot) turn against each other across the stem only,
+    // and stay.
     taken[c] = taken[d] = 1;
     welds.emplace_back(std::max(c, d), std::min(c, d));
   }

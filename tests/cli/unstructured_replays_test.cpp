@@ -52,6 +52,14 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "chine --length 69.007 --beam 5.95134 --draft 1.68361 --depth 2.15818 --patches 15 "
        "--seed 3553 --gap 0.0069007 --overlap 0.05",
        "1.462128", 400},
+      {"flap over the keel 4140",
+       "wigley --length 154.197 --beam 14.9945 --draft 6.07016 --depth 8.12596 --patches 13 "
+       "--seed 4140 --full --gap 0.0154197 --overlap 0.05",
+       "4.796946", 900},
+      {"flap over the keel 5347",
+       "wigley --length 77.9262 --beam 8.84379 --draft 3.24332 --depth 3.92803 --patches 13 "
+       "--seed 5347 --full --gap 0.00779262 --overlap 0.05",
+       "3.172384", 1000},
   };
   test::expect_replays_break_no_hard_rule("unstructured", cases, "cli_unstructured_replays");
 }

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "query/find_self_intersections.h"
+#include "support/hull_spec.h"
 #include "unstructured/features.h"
 #include "unstructured/merge_steps.h"
 #include "unstructured/merge_support.h"
@@ -77,6 +79,41 @@ TEST(MergeSteps, AFoldOfTwoSliversIsWeldedButAKnifeEdgeIsNot) {
   merge::Work apart = work_of({{0, 0, 0}, {1, 0, 0}, {0.2, 0.005, 0}, {0.8, 0.006, 0.001}},
                               {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}}, {0, 1});
   EXPECT_TRUE(merge::folded_edge_welds(apart, build_edge_adjacency(apart.mesh.faces, 4)).empty());
+}
+
+// A flap folded flat onto the face across an edge: two faces as wide as they are long on the
+// edge's +y side, face 0 facing +z and face 1 -z, their third corners 5 cm apart; face 1 also
+// turns against face 2 across its other edge. The third corners are welded. Two faces that turn
+// against each other across their one shared edge only (a thin stem's halves) are no flap.
+TEST(MergeSteps, AFlapFoldedFlatIsWeldedButAThinStemIsNot) {
+  const std::vector<Vec3d> corners = {
+      {0, 0, 0}, {1, 0, 0}, {0.4, 0.5, 0}, {0.45, 0.5, 0.001}, {0.2, -0.4, 0}};
+  merge::Work flap =
+      work_of(corners, {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}, {3, 0, 4, kInvalid}}, {0, 1, 0});
+  const auto welds = merge::folded_edge_welds(flap, build_edge_adjacency(flap.mesh.faces, 5));
+  ASSERT_EQ(welds.size(), 1u);
+  EXPECT_EQ(welds[0], (std::pair<Index, Index>{3, 2}));
+  merge::Work stem = work_of(corners, {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}}, {0, 1});
+  EXPECT_TRUE(merge::folded_edge_welds(stem, build_edge_adjacency(stem.mesh.faces, 5)).empty());
+}
+
+// Property seed 4140: a full Wigley hull of 13 patches with 1.5 cm gaps and 5% overlaps, merged
+// at 24,000 triangles. Where a starboard overlap's seam meets the keel at x = 24.3 m, a port face
+// had a starboard vertex 0.55 m up the side as its third corner and lay over the starboard
+// faces upside down; the merged surface passed through itself 4 times (and the panels of the
+// unstructured mesher once). The flap is welded away.
+TEST(Merge, AFlapOverTheKeelWhereAnOverlapSeamMeetsItIsWelded) {
+  HullSpec spec = hull_spec(HullKind::kWigley, 154.197, 14.9945, 6.07016, 8.12596, 13, true);
+  spec.defects.seed = 4140;
+  spec.defects.gap = 0.0154197;
+  spec.defects.overlap = 0.05;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 24'000));
+  EXPECT_GE(m.merged.report.folds_welded, 1u);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);
+  EXPECT_EQ(x.count, 0u) << "first near " << (x.first.empty() ? Vec3d{} : x.first[0].where).x;
 }
 
 // The generated 100-patch chine hull with 5 cm gaps and 5% overlaps, at its default size: where
