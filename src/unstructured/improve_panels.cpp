@@ -198,13 +198,25 @@ bool line_placement(const State& s, Index v, Index k, Placement& to) {
   return true;
 }
 
-// A live face sharing a corner with face f (across an edge or at a corner alone) and lying back
-// to back with it; kInvalid when none.
+// A live face lying back to back with face f: one sharing a corner with it (across an edge or at
+// a corner alone), else one sharing a corner with such a face. The second ring is for a thin
+// end whose two halves' stems stay apart, joined by slivers in the stem's plane (property seed
+// 5244: a full Wigley's bow foot, the two panels' centres 2 cm apart with no corner shared).
+// kInvalid when none.
 Index back_to_back_partner(const State& s, Index f) {
   const auto& t = s.faces[f];
   for (Index v : t) {
     for (Index g : s.vertex_faces[v]) {
       if (g != f && back_to_back(s, t, s.faces[g])) return g;
+    }
+  }
+  for (Index v : t) {
+    for (Index h : s.vertex_faces[v]) {
+      for (Index w : s.faces[h]) {
+        for (Index g : s.vertex_faces[w]) {
+          if (g != f && back_to_back(s, t, s.faces[g])) return g;
+        }
+      }
     }
   }
   return kInvalid;

@@ -60,6 +60,10 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "wigley --length 77.9262 --beam 8.84379 --draft 3.24332 --depth 3.92803 --patches 13 "
        "--seed 5347 --full --gap 0.00779262 --overlap 0.05",
        "3.172384", 1000},
+      {"bow foot, no corner shared 5244",
+       "wigley --length 119.167 --beam 10.2598 --draft 3.98426 --depth 6.30855 --patches 9 "
+       "--seed 5244 --full --gap 0.0119167",
+       "4.019986", 1000},
   };
   test::expect_replays_break_no_hard_rule("unstructured", cases, "cli_unstructured_replays");
 }
