@@ -199,10 +199,10 @@ bool line_placement(const State& s, Index v, Index k, Placement& to) {
 }
 
 // A live face lying back to back with face f: one sharing a corner with it (across an edge or at
-// a corner alone), else one sharing a corner with such a face. The second ring is for a thin
-// end whose two halves' stems stay apart, joined by slivers in the stem's plane (property seed
-// 5244: a full Wigley's bow foot, the two panels' centres 2 cm apart with no corner shared).
-// kInvalid when none.
+// a corner alone), else one sharing a corner with a sliver that shares one with f. The second
+// ring is for a thin end whose two halves' stems stay apart, joined by slivers in the stem's
+// plane (property seed 5244: a full Wigley's bow foot, the two panels' centres 2 cm apart with
+// no corner shared); through slivers alone, it costs next to nothing. kInvalid when none.
 Index back_to_back_partner(const State& s, Index f) {
   const auto& t = s.faces[f];
   for (Index v : t) {
@@ -212,6 +212,7 @@ Index back_to_back_partner(const State& s, Index f) {
   }
   for (Index v : t) {
     for (Index h : s.vertex_faces[v]) {
+      if (!(tri_shape(s, s.faces[h]) < kSliverShape)) continue;
       for (Index w : s.faces[h]) {
         for (Index g : s.vertex_faces[w]) {
           if (g != f && back_to_back(s, t, s.faces[g])) return g;
