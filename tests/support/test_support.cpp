@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "support/test_json.h"
@@ -35,7 +36,12 @@ fs::path shared_hull(const std::string& name) {
 
 fs::path scratch_dir(const std::string& test_name) {
   const char* build = std::getenv("HM_BUILD_DIR");
-  fs::path root = build ? fs::path(build) / "test-scratch" : fs::temp_directory_path() / "hm-test";
+  // Without a build directory, one root per working directory (the checkout the tests run
+  // from): two checkouts testing at once on one machine must not remove each other's files.
+  char tag[32];
+  std::snprintf(tag, sizeof tag, "hm-test-%016zx",
+                std::hash<std::string>{}(fs::current_path().string()));
+  fs::path root = build ? fs::path(build) / "test-scratch" : fs::temp_directory_path() / tag;
   fs::path dir = root / test_name;
   fs::remove_all(dir);
   fs::create_directories(dir);
