@@ -120,7 +120,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     // A heeled hull has no y = 0 symmetry, so a half hull cannot stand for it: its mirror image
     // joins it first, and the whole hull is meshed.
     const Vec3d e = out.hull.bbox.extent();
-    const double tol = 2e-4 * std::max({e.x, e.y, e.z});
+    const double tol = kPlaneTolerance * std::max({e.x, e.y, e.z});
     if (args.floating.heel_deg != 0 && (out.hull.bbox.lo.y >= -tol || out.hull.bbox.hi.y <= tol)) {
       add_mirror_image(out.hull);
       out.mirrored_before_meshing = true;
@@ -167,7 +167,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     progress.stage("cut");
     // The cuts before meshing: the waterplane, then the centre plane when one half of a full
     // hull is wanted.
-    out.centre_tol = 2e-4 * hull_length(out.merged.mesh);
+    out.centre_tol = kPlaneTolerance * hull_length(out.merged.mesh);
     out.file_half = is_half_hull(out.merged.mesh, out.centre_tol);
     out.top_cut.reset();
     out.waterplane_cut.reset();

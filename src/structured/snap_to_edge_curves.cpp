@@ -22,10 +22,6 @@
 namespace hm::structured {
 namespace {
 
-// The centre plane's tolerance, of the hull's largest extent: the boundary classification's and
-// the CLI's, which snaps the mesh's nodes within it onto y = 0.
-constexpr double kCentrePlane = 2e-4;
-
 // A domain edge of one patch: u fixed (u_fixed) at `fixed`, or v fixed.
 struct EdgeCurve {
   PatchId patch = kInvalid;
@@ -258,12 +254,12 @@ std::size_t snap_to_edge_curves(std::span<const Patch> patches, const SurfaceMes
     // A node below the waterline stays below it (the curve may rise through the plane nearby).
     if (std::isfinite(waterline_z) && keep != Keep::kWaterline && p.z > waterline_z) return;
     // A node in the centre plane (put there exactly by the cut or the half hull's border) stays
-    // within the centre plane's tolerance, which puts it back: the curve matched may be a
-    // knuckle that leaves the plane. Property seed 4424: the corner of the centre plane and the
-    // waterline on a transom immersed 5.5 mm went along the transom's lower edge to its
+    // within the centre plane's tolerance (kPlaneTolerance), which puts it back: the curve matched
+    // may be a knuckle that leaves the plane. Property seed 4424: the corner of the centre plane
+    // and the waterline on a transom immersed 5.5 mm went along the transom's lower edge to its
     // waterline crossing 0.079 m out, and the sliver between was left open below the waterline
     // in the mirrored hull.
-    if (q.y == 0 && !(std::abs(p.y) <= kCentrePlane * length_scale)) return;
+    if (q.y == 0 && !(std::abs(p.y) <= kPlaneTolerance * length_scale)) return;
     // apply: this node's own slots only.
     mesh.positions[v] = p;
     mesh.vertex_patch[v] = best->curve.patch;

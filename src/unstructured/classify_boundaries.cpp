@@ -14,7 +14,6 @@
 namespace hm::detail {
 namespace {
 
-constexpr double kPlaneTolerance = 2e-4;   // of L: centre plane and waterline
 constexpr double kTransomMaxDx = 0.5;      // |dx| / |edge|: within 30 degrees of y-z plane
 constexpr double kTransomMaxFaceNx = 0.7;  // |n_x| of the face along a transom edge
 constexpr double kTransomEndReach = 0.25;  // of L, from either x end of the surface

@@ -181,15 +181,15 @@ std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const Edge
     normal[f] = twice_area > 0 ? n / twice_area : Vec3d{};
   });
   const auto turned = [&](Index f, Index g) { return dot(normal[f], normal[g]) <= -kFoldCos; };
-  std::vector<std::uint8_t> flap(m.face_count(), 0);
-  parallel_for(0, m.face_count(), [&](std::size_t f) {
+  // Asked only of faces already turned against one neighbour (a few in a merge).
+  const auto flap = [&](Index f) {
     int against = 0;
     for (int k = 0; k < 3; ++k) {
       const Index g = adj.opposite_face[4 * f + k];
-      against += g != kInvalid && turned(static_cast<Index>(f), g);
+      against += g != kInvalid && turned(f, g);
     }
-    flap[f] = against >= 2;
-  });
+    return against >= 2;
+  };
   std::vector<std::uint8_t> taken(m.vertex_count(), 0), inconsistent(adj.edges.size(), 0);
   for (Index e : adj.inconsistent_edges) inconsistent[e] = 1;
   for (std::size_t e = 0; e < adj.edges.size(); ++e) {
@@ -200,7 +200,7 @@ std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const Edge
     const Index a = edge.first_slot / 4, b = adj.opposite_face[edge.first_slot];
     if (b == kInvalid) continue;
     const bool slivers = thin[a] && thin[b];
-    if (!slivers && !((flap[a] || flap[b]) && turned(a, b))) continue;
+    if (!slivers && !(turned(a, b) && (flap(a) || flap(b)))) continue;
     const Vec3d away_a = away_from_edge(m, m.faces[a], edge.v0, edge.v1);
     const Vec3d away_b = away_from_edge(m, m.faces[b], edge.v0, edge.v1);
     if (!(dot(away_a, away_b) >= kFoldCos)) continue;

@@ -50,6 +50,11 @@ struct FeatureOptions {
   bool waterline_inside = false;
 };
 
+// The waterline's and the centre plane's tolerance, as a share of L (the largest bounding-box
+// extent): a boundary edge within it is on the plane, and the CLI puts mesh nodes within it of
+// y = 0 onto the centre plane.
+inline constexpr double kPlaneTolerance = 2e-4;
+
 // Rules per boundary edge, first match wins (tolerances relative to L, the largest bounding-box
 // extent; either x end may be the bow, a half hull may lie on either side of y = 0):
 //   kWaterline   both ends within 2e-4 L of waterline_z;
