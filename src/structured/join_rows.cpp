@@ -88,7 +88,7 @@ class Joiner {
   bool end_caps(std::size_t j, bool aft) {
     const double margin = kSlabMargin * metric_.size.x;
     const double lo = aft ? -kInf : rows_[j].x - margin, hi = aft ? rows_[j].x + margin : kInf;
-    const std::vector<Group> g = groups(j, lo, hi);
+    const std::vector<Group> g = groups(j, lo, hi, aft ? -1 : 1);
     std::vector<std::vector<Vec3d>> paths;
     for (const Group& group : g) {
       paths.push_back(cap_path(group, lo, hi));
@@ -116,7 +116,7 @@ class Joiner {
   // Strip j: links within [lo, hi], caps within [cap_lo, cap_hi].
   bool by_groups(std::size_t j, double lo, double hi, double cap_lo, double cap_hi,
                  std::size_t& caps) {
-    const std::vector<Group> a = groups(j, lo, hi), b = groups(j + 1, lo, hi);
+    const std::vector<Group> a = groups(j, lo, hi, 1), b = groups(j + 1, lo, hi, -1);
     std::vector<std::vector<Vec3d>> cap_a, cap_b;
     for (const Group& g : a) cap_a.push_back(cap_path(g, cap_lo, cap_hi));
     for (const Group& g : b) cap_b.push_back(cap_path(g, cap_lo, cap_hi));
@@ -160,11 +160,16 @@ class Joiner {
   }
 
   // The row's curves in groups: curve c joins c + 1 where the boundary between them stays in
-  // [lo, hi].
-  std::vector<Group> groups(std::size_t j, double lo, double hi) {
+  // [lo, hi] and reaches farther to the strip's side of the row (side +1: forward, -1: aft) than
+  // away from it. A boundary that lies beyond the row joins its curves in the neighbouring strip
+  // only: a bulb's neck just aft of a station joins bulb and stem in the strip aft of it, while
+  // in the strip forward of it the stem is a piece of its own.
+  std::vector<Group> groups(std::size_t j, double lo, double hi, int side) {
     std::vector<Group> out{Group{j, 0, 0, {}, kInf, -kInf, {}}};
+    const double x = rows_[j].x;
     for (std::size_t c = 0; c + 1 < rows_[j].curves.size(); ++c) {
-      if (Link* l = link(j, c, lo, hi)) {
+      Link* l = link(j, c, lo, hi);
+      if (l && (side > 0 ? l->x_hi - x >= x - l->x_lo : x - l->x_lo >= l->x_hi - x)) {
         out.back().links.push_back(l);
         out.back().c1 = c + 1;
       } else {

@@ -12,7 +12,11 @@
 //   - seed 1203: a flared stem where a border panel's removal merged a node so that its panels
 //     lay across the next row's: 4 pairs of panels passed through each other;
 //   - seed 2563: a raked stem above a bulb, whose end cap folded two triangles onto each other
-//     (2 pairs of very close panel centres, one on each side of the mirrored hull).
+//     (2 pairs of very close panel centres, one on each side of the mirrored hull);
+//   - seeds 5395 and 5498: a full hull with a centre gap whose bulb's neck lies just aft of a
+//     station; the strip forward of it joined bulb and stem through the neck and zipped both to
+//     the bulb alone, so a quad stood in the centre plane through the stem's cap (2 pairs of
+//     panels through each other).
 #include "support/replay.h"
 
 namespace hm {
@@ -50,6 +54,14 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
        "chine --length 192.815 --beam 16.0739 --draft 5.01366 --depth 6.76159 --patches 6 "
        "--seed 4058 --full --gap 0.0192815 --flip-every 4",
        "5.208077", 300},
+      {"bulb neck aft of a station 5395",
+       "round-bilge --length 42.2379 --beam 5.21267 --draft 2.04873 --depth 2.51114 --patches 2 "
+       "--seed 5395 --full --gap 0.00422379",
+       "2.178235", 700},
+      {"bulb neck aft of a station 5498",
+       "round-bilge --length 145.616 --beam 31.7095 --draft 10.6771 --depth 12.8515 --patches 13 "
+       "--seed 5498 --full --gap 0.0145616",
+       "11.734374", 1200},
   };
   test::expect_replays_break_no_hard_rule("structured", cases, "cli_structured_replays");
 }
