@@ -199,6 +199,10 @@ HullQuery::Impl::Impl(std::span<const Patch> in_patches, const SurfaceMesh& mesh
 
   tri_uv.resize(total);
   project_corners(mesh);
+  if (!mesh.vertex_uv.empty() && !mesh.vertex_patch.empty()) {
+    vertex_patch = mesh.vertex_patch;
+    vertex_uv = mesh.vertex_uv;
+  }
 
   // How far the triangles stray from the surface, sampled at their centroids: the closest-point
   // search widens its radius by this much so that it does not miss a patch whose triangles lie

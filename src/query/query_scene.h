@@ -37,6 +37,11 @@ struct HullQuery::Impl {
   std::vector<PatchId> tri_patch;
   std::vector<std::array<Vec2d, 3>> tri_uv;  // corner (u, v) on tri_patch, seams unwrapped
   std::vector<Index> patch_first;            // size patches + 1
+  // Per vertex, the patch it was made on and its (u, v) there (both empty when the mesh has
+  // none): a triangle may reach past its own patch's surface (a merge's stitch across an
+  // overlap's cut), and its corners then say which surface lies under it.
+  std::vector<PatchId> vertex_patch;
+  std::vector<Vec2d> vertex_uv;
 
   query::ScenePtr scene;
   query::PlaneBvh plane_bvh;

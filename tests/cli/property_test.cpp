@@ -94,9 +94,13 @@ Case random_case(std::uint64_t seed) {
 }
 
 void check_case(const Case& c, const fs::path& dir) {
+  // The draft as the meshers are given it (six significant digits), so that the replay line
+  // repeats the case by hand.
+  std::ostringstream draft;
+  draft << c.draft;
   const std::string replay = "replay with HM_PROPERTY_SEED=" + std::to_string(c.seed) +
-                             " (generate " + c.generate + ", draft " + std::to_string(c.draft) +
-                             ", " + std::to_string(c.panels) + " panels)";
+                             " (generate " + c.generate + ", draft " + draft.str() + ", " +
+                             std::to_string(c.panels) + " panels)";
   SCOPED_TRACE(replay);
   const fs::path igs = dir / ("hull_" + std::to_string(c.seed) + ".igs");
   const auto g = run_hullmesh("-q generate " + c.generate + " -o " + q(igs));
@@ -105,7 +109,7 @@ void check_case(const Case& c, const fs::path& dir) {
     const fs::path out = dir / (mesher + "_" + std::to_string(c.seed) + ".obj");
     std::ostringstream args;
     args << "-q --threads 2 " << mesher << " " << q(igs) << " -o " << q(out) << " --panels "
-         << c.panels << " --draft " << c.draft;
+         << c.panels << " --draft " << draft.str();
     const auto r = run_hullmesh(args.str());  // HULLMESH_VALIDATE=1: the invariants
     ASSERT_EQ(r.exit_code, 0) << mesher << ": " << r.out;
     const nlohmann::json record = test::read_json(fs::path(out).replace_extension(".run.json"));

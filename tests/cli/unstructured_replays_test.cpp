@@ -15,6 +15,11 @@
 //     1.6 cm: a crossing refined along its edge's parameter line ran along the plane past the
 //     next one, and the split faces there passed through each other (1-2 pairs of panels); the
 //     cut keeps each triangle's crossings in their linear order (cut_at_plane.cpp).
+//   - seeds 6056 and 6834: chine hulls with 5% overlaps, where the merge stitches a bottom
+//     patch's end to the next one's cut with triangles named for the first but reaching 0.65 m
+//     past its surface; the deviation check projected panel points under them onto that patch's
+//     end and reported 0.57 m and 0.08 m over its bound on a chine the panels followed exactly
+//     (closest_point_query.cpp: a corner made on another patch answers for it).
 #include "support/replay.h"
 
 namespace hm {
@@ -64,6 +69,14 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "wigley --length 119.167 --beam 10.2598 --draft 3.98426 --depth 6.30855 --patches 9 "
        "--seed 5244 --full --gap 0.0119167",
        "4.019986", 1000},
+      {"stitch past a patch's end 6056",
+       "chine --length 197.65 --beam 29.7449 --draft 11.1617 --depth 14.5483 --patches 7 "
+       "--seed 6056 --overlap 0.05 --duplicate-points --flip-every 4",
+       "10.4521", 500},
+      {"stitch past a patch's end 6834",
+       "chine --length 58.3353 --beam 11.1327 --draft 4.37527 --depth 5.95881 --patches 8 "
+       "--seed 6834 --overlap 0.05 --duplicate-points",
+       "3.50942", 800},
   };
   test::expect_replays_break_no_hard_rule("unstructured", cases, "cli_unstructured_replays");
 }

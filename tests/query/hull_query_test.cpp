@@ -204,6 +204,36 @@ TEST(HullQuery, ClosestPointAcrossASeamAndBetweenPatches) {
   }
 }
 
+// A merge stitches a patch's border to an overlapping patch's cut with triangles named for the
+// first patch, reaching up to a panel past its end. Here the first column of the forward half's
+// triangles is named for the aft half: their forward corners project onto the aft half's end,
+// 0.25 m away. A point just off them is still answered from the surface it lies on.
+TEST(HullQuery, ClosestPointOnTrianglesReachingPastTheirPatch) {
+  Scene split = split_wigley_scene(true);
+  const double column = 0.5 * kL / 20;
+  std::vector<Index> renamed;
+  for (std::size_t f = 0; f < split.mesh.face_count(); ++f) {
+    if (split.mesh.face_patch[f] != 1) continue;
+    const Vec3d c = face_centroid(split.mesh.positions, split.mesh.faces[f]);
+    if (c.x < column) {
+      split.mesh.face_patch[f] = 0;
+      renamed.push_back(static_cast<Index>(f));
+    }
+  }
+  ASSERT_EQ(renamed.size(), 24u);
+  const HullQuery w = split.query();
+  for (Index f : renamed) {
+    const auto& face = split.mesh.faces[f];
+    const Vec3d c = face_centroid(split.mesh.positions, face);
+    const Vec3d n =
+        normalized(cross(split.mesh.positions[face[1]] - split.mesh.positions[face[0]],
+                         split.mesh.positions[face[2]] - split.mesh.positions[face[0]]));
+    const ClosestPoint cp = w.closest_point(c + 1e-3 * n);
+    EXPECT_LT(cp.distance, 1.01e-3) << f;
+    EXPECT_NEAR(cp.point.y, test::wigley_y(kL, kB, kT, cp.point.x, cp.point.z), 1e-10) << f;
+  }
+}
+
 void expect_on_wigley(const SectionPolyline& line, const Plane& plane) {
   const Vec3d n = normalized(plane.normal);
   for (const SectionPoint& p : line.points) {
