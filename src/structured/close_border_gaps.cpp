@@ -6,8 +6,10 @@
 #include <cmath>
 #include <limits>
 
+#include "core/bbox.h"
 #include "mesh/adjacency.h"
 #include "structured/border_path.h"
+#include "unstructured/features.h"
 
 namespace hm::structured {
 namespace {
@@ -50,11 +52,12 @@ Index add_node(const Vec3d& p, Index u, SurfaceMesh& mesh, std::vector<NodeSlot>
 // top_z: the surface's highest z, the waterplane where it was cut there; a point within plane_tol
 // (m) below it is on it (a cut in the file's frame rounds). Returns false, and adds nothing, when
 // the end off the centre plane is not on it: the edge cuts no corner of the waterline.
+// centre_tol (m): a point this close to y = 0 is in the centre plane.
 bool fill_cut_corner(const std::vector<Vec3d>& path, Index u, Index w, double top_z,
-                     double plane_tol, const Metric& metric, SurfaceMesh& mesh,
+                     double plane_tol, double centre_tol, const Metric& metric, SurfaceMesh& mesh,
                      std::vector<NodeSlot>& slots) {
   const auto on_plane = [&](const Vec3d& p) { return top_z - p.z <= plane_tol; };
-  const bool u_central = mesh.positions[u].y == 0;
+  const bool u_central = std::abs(mesh.positions[u].y) <= centre_tol;
   std::vector<Vec3d> from_central(path.begin(), path.end());
   if (!u_central) std::reverse(from_central.begin(), from_central.end());
   // Both ends on the waterplane: the edge lies along the waterline and cuts no corner.
@@ -62,7 +65,7 @@ bool fill_cut_corner(const std::vector<Vec3d>& path, Index u, Index w, double to
   // The corner: the first point on the waterplane (it may be the other end itself).
   std::size_t c = 1;
   while (c + 1 < from_central.size() && !on_plane(from_central[c])) ++c;
-  if (from_central[c].y != 0) {
+  if (!(std::abs(from_central[c].y) <= centre_tol)) {
     // The fine mesh cuts across the corner where the centre plane meets the waterplane (a chord
     // of a fine triangle: the property test's seeds 1209 at a transom and 1295 at a stem): the
     // corner is put back below the point where the path reaches the waterplane, the way the
@@ -121,7 +124,17 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
   const double tol = 0.25 * std::min({metric.size.x, metric.size.y, metric.size.z});
   const std::size_t face_count = mesh.faces.size();
   double top_z = -std::numeric_limits<double>::infinity();
-  for (const Vec3d& p : surface.positions) top_z = std::max(top_z, p.z);
+  BBox3d box;
+  for (const Vec3d& p : surface.positions) {
+    top_z = std::max(top_z, p.z);
+    box.add(p);
+  }
+  // The centre plane's tolerance, as the boundary classification's: a file may draw its
+  // centre-plane edge a little off y = 0 (kcs.iges, 2.5e-6 m), and the command puts those nodes
+  // onto it after meshing.
+  const Vec3d extent = box.extent();
+  const double centre_tol = kPlaneTolerance * std::max({extent.x, extent.y, extent.z});
+  const auto central = [&](const Vec3d& p) { return std::abs(p.y) <= centre_tol; };
   for (Index e : panels.boundary_edges) {
     const Index slot = panels.edges[e].first_slot;
     const Face& f = mesh.faces[slot / 4];
@@ -129,7 +142,7 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
     const Vec3d pu = mesh.positions[u], pw = mesh.positions[w];
     // One end on the centre plane and the other off it, on another plane (the waterline): the
     // boundary turns a corner between them, however little the path strays.
-    const bool turns = pu.z != pw.z && (pu.y == 0) != (pw.y == 0);
+    const bool turns = pu.z != pw.z && central(pu) != central(pw);
     const bool row_ends = u < row_end.size() && w < row_end.size() && row_end[u] && row_end[w];
     // Any other panel edge (an end cap's) is a gap only where it cuts such a corner, both ends
     // on the boundary itself: a transom immersed a few hundredths of a panel, whose corner below
@@ -139,7 +152,8 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
       const std::vector<Vec3d> best =
           shortest_border_path(surface, adj, pu, pw, metric, kOnBorder * tol);
       if (best.size() < 3 || stray(best, pu, pw, metric) < kMinStray) continue;
-      if (fill_cut_corner(best, u, w, top_z, kOnBorder * tol, metric, mesh, slots)) ++counts.gaps;
+      if (fill_cut_corner(best, u, w, top_z, kOnBorder * tol, centre_tol, metric, mesh, slots))
+        ++counts.gaps;
       continue;
     }
     if (slots[u].row == slots[w].row) continue;
@@ -169,10 +183,10 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
     // through the corner is kept: where a concave stem runs aft of the last station, the
     // zip's nodes on the stem would cross the rows' panels (seed 1257).
     const bool has_corner = std::any_of(inner.begin(), inner.end(), [&](const Vec3d& p) {
-      return p.y == 0 && top_z - p.z <= kOnBorder * tol;
+      return central(p) && top_z - p.z <= kOnBorder * tol;
     });
     if (turns && !has_corner &&
-        fill_cut_corner(best, u, w, top_z, kOnBorder * tol, metric, mesh, slots)) {
+        fill_cut_corner(best, u, w, top_z, kOnBorder * tol, centre_tol, metric, mesh, slots)) {
       ++counts.gaps;
       continue;
     }

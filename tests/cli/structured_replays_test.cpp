@@ -66,5 +66,27 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
   test::expect_replays_break_no_hard_rule("structured", cases, "cli_structured_replays");
 }
 
+// kcs.iges draws its centre-plane edge 2.5e-6 m off y = 0. A row's end at the stern, one node
+// in the centre plane and one on the waterline, cut the corner between them, and the gap fill
+// took the centre plane for y == 0 exactly, so it saw no corner: a sliver 0.03 m by 0.014 m
+// stayed open below the waterline at 1,500 panels and a 0.2587 m draft (and at 800 panels, a
+// 0.274 m draft and 1.45 degrees of trim). Both meshes are closed below the waterline now.
+TEST(CliStructured, ACornerOfACentrePlaneDrawnOffYZeroIsClosed) {
+  HM_REQUIRE_SHARED_HULL(kcs, "kcs.iges");
+  const auto dir = test::scratch_dir("cli_structured_kcs_corner");
+  for (const char* position : {"--panels 1500 --draft 0.2587",
+                               "--panels 800 --draft 0.27393 "
+                               "--trim -1.45"}) {
+    const auto out = dir / "panels.obj";
+    const auto r = test::run_hullmesh("-q --validate structured " + test::q(kcs) + " -o " +
+                                      test::q(out) + " " + position);
+    ASSERT_EQ(r.exit_code, 0) << position << ": " << r.out;
+    const nlohmann::json record =
+        test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
+    ASSERT_TRUE(record.is_object()) << position;
+    EXPECT_EQ(record["quality"]["free_edges_below_waterline"], 0) << position;
+  }
+}
+
 }  // namespace
 }  // namespace hm
