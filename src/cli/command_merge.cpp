@@ -125,6 +125,9 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
       std::printf("  overlap remnants lying on another patch across an edge dropped: %zu\n",
                   r.folded_faces_dropped);
     }
+    if (r.flat_faces_split > 0) {
+      std::printf("  faces with their corners on one line split away: %zu\n", r.flat_faces_split);
+    }
     if (r.folds_welded > 0) {
       std::printf("  folds closed (two faces on each other across an edge): %zu\n", r.folds_welded);
     }

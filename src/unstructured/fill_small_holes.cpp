@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -23,7 +24,6 @@ namespace hm::merge {
 namespace {
 
 constexpr std::size_t kMaxHoleVertices = 16;
-
 // Faces closing loop r (its vertices in its faces' winding) by ear clipping in the plane square to
 // `up` (the faces' side the new faces must face too): of the ears that are convex there, hold no
 // other loop vertex and whose diagonal is not an edge of the mesh already (is_edge), the one with
@@ -133,6 +133,105 @@ bool split_across_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector
   m.face_patch.push_back(m.face_patch[f]);
   w.face_old.push_back(w.face_old[f]);
   split[f] = 1;  // the new face is not in adj, so no later hole can name it
+  return true;
+}
+
+// Closes a hole of more than three vertices that all lie on one line (within kFlatHole of its
+// length): a slit of no width, two runs of border along the same line whose vertices the snap
+// left apart. Every face along it is split at the hole's vertices that lie inside its edge on
+// the hole, as T-junctions are split, and the two runs then share their edges. A fan or ear
+// would give faces of no area: where the two halves' keels of a full chine hull with a gap of
+// 2e-4 L or more end at the transom's bottom edge, ten vertices on that edge. False (and nothing
+// changed) when the hole is not flat, a face along it is met twice or was split already in this
+// pass, or the split runs would not pair up edge for edge.
+bool split_along_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<Index>& r,
+                           const std::vector<Index>& edges, std::vector<std::uint8_t>& split) {
+  SurfaceMesh& m = w.mesh;
+  const std::size_t n = r.size();
+  // The line: through the two vertices farthest apart.
+  std::size_t i0 = 0, j0 = 0;
+  double far = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double d = squared_norm(m.positions[r[j]] - m.positions[r[i]]);
+      if (d > far) far = d, i0 = i, j0 = j;
+    }
+  }
+  if (!(far > 0)) return false;
+  const Vec3d origin = m.positions[r[i0]];
+  const Vec3d dir = (m.positions[r[j0]] - origin) / std::sqrt(far);
+  const double length = std::sqrt(far);
+  std::vector<double> t(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d d = m.positions[r[i]] - origin;
+    t[i] = dot(d, dir);
+    if (norm(d - t[i] * dir) > kFlatHole * length) return false;
+  }
+  // Each hole edge r[i] -> r[i + 1] with the hole's vertices strictly inside it, in order.
+  struct Run {
+    Index face;
+    std::vector<Index> inner;
+  };
+  std::vector<Run> runs(n);
+  std::vector<std::pair<Index, Index>> pieces;  // the hole's edges after the splits
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = (i + 1) % n;
+    const Index f = adj.edges[edges[i]].first_slot / 4;
+    if (split[f]) return false;
+    for (std::size_t e = 0; e < i; ++e) {
+      if (runs[e].face == f) return false;
+    }
+    runs[i].face = f;
+    const double lo = std::min(t[i], t[k]), hi = std::max(t[i], t[k]);
+    std::vector<std::pair<double, Index>> inside;
+    for (std::size_t v = 0; v < n; ++v) {
+      if (t[v] > lo && t[v] < hi && r[v] != r[i] && r[v] != r[k]) inside.push_back({t[v], r[v]});
+    }
+    std::sort(inside.begin(), inside.end());
+    if (t[k] < t[i]) std::reverse(inside.begin(), inside.end());
+    Index from = r[i];
+    for (const auto& [tv, v] : inside) {
+      runs[i].inner.push_back(v);
+      pieces.push_back({from, v});
+      from = v;
+    }
+    pieces.push_back({from, r[k]});
+  }
+  // Every piece must meet its reverse exactly once.
+  std::vector<std::pair<Index, Index>> sorted = pieces;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
+  for (const auto& [a, b] : pieces) {
+    if (!std::binary_search(sorted.begin(), sorted.end(), std::pair<Index, Index>{b, a}))
+      return false;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (runs[i].inner.empty()) continue;
+    const Index f = runs[i].face;
+    const Face face = m.faces[f];
+    const Index a = r[i], b = r[(i + 1) % n];
+    int c = 0;  // the face's corner where the hole edge begins in the face's own winding
+    while (c < 3 && !((face[c] == a && face[(c + 1) % 3] == b) ||
+                      (face[c] == b && face[(c + 1) % 3] == a))) {
+      ++c;
+    }
+    if (c == 3) return false;  // cannot happen: the edge is the face's (nothing written yet)
+    const Index p = face[c], q = face[(c + 1) % 3], apex = face[(c + 2) % 3];
+    std::vector<Index> chain{p};
+    if (p == a) {
+      chain.insert(chain.end(), runs[i].inner.begin(), runs[i].inner.end());
+    } else {
+      chain.insert(chain.end(), runs[i].inner.rbegin(), runs[i].inner.rend());
+    }
+    chain.push_back(q);
+    m.faces[f] = {chain[0], chain[1], apex, kInvalid};
+    for (std::size_t s = 1; s + 1 < chain.size(); ++s) {
+      m.faces.push_back({chain[s], chain[s + 1], apex, kInvalid});
+      m.face_patch.push_back(m.face_patch[f]);
+      w.face_old.push_back(w.face_old[f]);
+    }
+    split[f] = 1;  // the new faces are not in adj, so no later hole can name them
+  }
   return true;
 }
 
@@ -358,6 +457,11 @@ HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions
       // The loop follows its faces' winding, so the new faces run against it.
       std::vector<Face> add;
       if (r.size() == 3 && split_across_flat_hole(w, adj, r, edges, split)) {
+        ++stats.filled;
+        continue;
+      }
+      if (r.size() > 3 && split_along_flat_hole(w, adj, r, edges, split)) {
+        for (Index v : r) changed[v] = 1;
         ++stats.filled;
         continue;
       }

@@ -301,6 +301,8 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   }
   if (r.gaps_bridged > 0) adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   weld_folds(w, adj, length, r);
+  r.flat_faces_split = merge::split_flat_faces(w, length);
+  if (r.flat_faces_split > 0) adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   r.vertices_welded = s.welded;
   r.tjunctions_split = s.split;
   r.gaps_closed = s.gaps_closed;

@@ -71,6 +71,8 @@ struct MergeReport {
   // Interior edges whose two faces lay on each other (a fold of slivers the overlap cut left
   // along a chine), closed by welding the faces' third corners.
   std::size_t folds_welded = 0;
+  // Faces with their corners on one line, taken out by splitting a neighbour (split_flat_faces).
+  std::size_t flat_faces_split = 0;
   std::size_t holes_filled = 0;  // corner holes of 3-4 vertices between patches, closed
   // The result's topology (from its edge adjacency).
   std::size_t boundary_loops = 0;

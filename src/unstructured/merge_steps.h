@@ -89,6 +89,12 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
 // closed. The new faces take the provenance of a face along the loop (append_faces).
 std::size_t bridge_gaps(Work& w, const EdgeAdjacency& adj, double widest);
 
+// Faces whose three corners lie on one line (a zipper or fan laid along a straight border) go:
+// each one's neighbour across its longest side is split at its third corner, or, where two of
+// its corners lie on one spot, those two are welded. Returns the faces removed; a mesh with
+// none is untouched. length: the hull's, for drop_degenerate's area floor.
+std::size_t split_flat_faces(Work& w, double length);
+
 struct FoldStats {
   std::size_t faces = 0;
   double area = 0;  // m^2

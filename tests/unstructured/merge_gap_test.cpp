@@ -78,5 +78,45 @@ TEST(MergeGaps, TheSharpBowOfACleanFullHullIsNoNotch) {
   EXPECT_EQ(m.merged.report.gaps_bridged, 0u);
 }
 
+std::size_t zero_area_faces(const SurfaceMesh& m) {
+  std::size_t n = 0;
+  for (const Face& f : m.faces) {
+    double longest = 0;
+    for (int c = 0; c < 3; ++c)
+      longest = std::max(longest, squared_norm(m.positions[f[(c + 1) % 3]] - m.positions[f[c]]));
+    n += face_area(m.positions, f) <= 1e-10 * longest;
+  }
+  return n;
+}
+
+// Full chine hulls with a gap between the halves of 2e-4 L and more, at 10,000 triangles (the
+// structured mesher's fine mesh at 1,200 panels): the keels' gap ends on the transom's straight
+// bottom edge, and what closed it there had its corners on that line. With 3 patches and 0.02 m
+// the last hole was ten vertices on the edge, fanned (2 faces of no area); with 2 patches and
+// 0.05 m the zipper laid 19 flat faces along it; with 0.03 m two keel vertices stayed apart on
+// one spot. `--validate` refused every one. Now the hole is closed by splitting the faces along
+// it at its vertices (split_along_flat_hole), and the merge's last step splits away or welds what
+// flat faces are left (split_flat_faces).
+TEST(MergeGaps, GapsClosingOnAStraightTransomEdgeLeaveNoFaceOfNoArea) {
+  struct Case {
+    int patches;
+    double gap;
+  };
+  for (const Case c : {Case{3, 0.02}, Case{2, 0.05}, Case{2, 0.03}}) {
+    SCOPED_TRACE(std::to_string(c.patches) + " patches, gap " + std::to_string(c.gap));
+    HullSpec spec;
+    spec.kind = HullKind::kChine;
+    spec.patches = c.patches;
+    spec.full_hull = true;
+    spec.defects.gap = c.gap;
+    const std::vector<Patch> patches = generate_hull(spec).patches;
+    const Merged m = merge_of(patches, edge_length_for_triangles(patches, 10'000));
+    EXPECT_EQ(zero_area_faces(m.merged.mesh), 0u);
+    EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+    EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+    EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  }
+}
+
 }  // namespace
 }  // namespace hm::test
