@@ -10,6 +10,7 @@
 #include "cli/knuckle_hints.h"
 #include "cli/load_hull.h"
 #include "cli/run_record.h"
+#include "cli/validate_stage.h"
 #include "core/error.h"
 #include "io/write_mesh.h"
 #include "io/write_polylines.h"
@@ -74,6 +75,9 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
         c.file, merged.mesh, adj,
         "overlapping patches there? The surface is in " + c.output + " for inspection");
   }
+  // The surface's invariants (edge-manifold, consistently oriented, no face of no area), as
+  // the meshers check the surface they start from; it fails before anything is written.
+  if (g.validate) validate_stage(c.file, "merge", merged.mesh, {});
   const FeatureSet features = find_features(merged.mesh, adj, hull.patches, feature_options);
   const double t_features = seconds_since(t1);
 
@@ -106,7 +110,8 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
                     {"overlap_triangles_removed", merged.report.overlap_triangles_removed},
                     {"patches_flipped", merged.report.patches_flipped.size()},
                     {"knuckle_lines", features.knuckles.size()},
-                    {"boundary_runs", features.boundaries.size()}};
+                    {"boundary_runs", features.boundaries.size()},
+                    {"validated", g.validate}};
 
   if (!g.quiet) {
     const MergeReport& r = merged.report;

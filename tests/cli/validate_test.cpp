@@ -55,6 +55,26 @@ TEST(Validate, TheFlagReachesTheMesherDirectlyAndThroughAJobFile) {
   EXPECT_TRUE(validated(record));
 }
 
+// `hullmesh merge` checks the surface it writes as the meshers check the one they start from
+// (until 2026-12-05 the flag did nothing there, and a surface with faces of no area passed).
+TEST(Validate, TheFlagReachesTheMerge) {
+  unsetenv("HULLMESH_VALIDATE");
+  const fs::path dir = test::scratch_dir("cli_validate_merge");
+  const std::string igs = (dir / "c.igs").string();
+  ASSERT_EQ(execute_args(
+                {"-q", "generate", "chine", "--patches", "3", "--full", "--gap", "0.02", "-o", igs},
+                "test", {})
+                .exit_code,
+            0);
+  const std::string out = (dir / "c.obj").string();
+  for (const bool flag : {false, true}) {
+    std::vector<std::string> words = {"-q", "merge", igs, "-o", out, "--triangles", "10000"};
+    if (flag) words.insert(words.begin(), "--validate");
+    ASSERT_EQ(execute_args(words, "test", {}).exit_code, 0);
+    EXPECT_EQ(validated(dir / "c.run.json"), flag);
+  }
+}
+
 TEST(Validate, ABatchValidatesEveryJob) {
   unsetenv("HULLMESH_VALIDATE");
   const fs::path dir = test::scratch_dir("cli_validate_batch");
