@@ -9,7 +9,6 @@
 #include "core/bbox.h"
 #include "mesh/adjacency.h"
 #include "structured/border_path.h"
-#include "unstructured/features.h"
 
 namespace hm::structured {
 namespace {
@@ -21,6 +20,8 @@ constexpr double kGapPanels = 0.25;
 constexpr double kOnBorder = 1e-6;
 // A corner cut by less than this (panels) is rounding, not a gap: its fan would have no area.
 constexpr double kMinStray = 1e-6;
+// A node this close to y = 0 (share of the hull's largest extent) is in the centre plane.
+constexpr double kCentreRounding = 1e-6;
 
 // Largest metric distance of the points from the segment a-b.
 double stray(const std::vector<Vec3d>& pts, const Vec3d& a, const Vec3d& b, const Metric& m) {
@@ -129,11 +130,14 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
     top_z = std::max(top_z, p.z);
     box.add(p);
   }
-  // The centre plane's tolerance, as the boundary classification's: a file may draw its
-  // centre-plane edge a little off y = 0 (kcs.iges, 2.5e-6 m), and the command puts those nodes
-  // onto it after meshing.
+  // A node counts as in the centre plane within rounding of y = 0: a file may draw its
+  // centre-plane edge a hair off it (kcs.iges, 2.5e-6 m, 3e-7 L), and the command puts those
+  // nodes onto it after meshing. Not within the plane's snap tolerance (2e-4 L): a row end a
+  // millimetre off the plane (DTMB 5415's transition patch by the skeg, 1.5e-4 L) is no corner
+  // of it, and fans taken from there crossed the rows' panels (800 panels at a 0.319 m draft:
+  // 1 -> 4 pairs through each other).
   const Vec3d extent = box.extent();
-  const double centre_tol = kPlaneTolerance * std::max({extent.x, extent.y, extent.z});
+  const double centre_tol = kCentreRounding * std::max({extent.x, extent.y, extent.z});
   const auto central = [&](const Vec3d& p) { return std::abs(p.y) <= centre_tol; };
   for (Index e : panels.boundary_edges) {
     const Index slot = panels.edges[e].first_slot;
