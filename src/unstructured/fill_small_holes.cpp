@@ -12,7 +12,6 @@
 #include <array>
 #include <cstdint>
 #include <iterator>
-#include <limits>
 #include <set>
 #include <vector>
 
@@ -24,6 +23,7 @@ namespace hm::merge {
 namespace {
 
 constexpr std::size_t kMaxHoleVertices = 16;
+
 // Faces closing loop r (its vertices in its faces' winding) by ear clipping in the plane square to
 // `up` (the faces' side the new faces must face too): of the ears that are convex there, hold no
 // other loop vertex and whose diagonal is not an edge of the mesh already (is_edge), the one with
@@ -167,9 +167,11 @@ bool split_along_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<
     t[i] = dot(d, dir);
     if (norm(d - t[i] * dir) > kFlatHole * length) return false;
   }
-  // Each hole edge r[i] -> r[i + 1] with the hole's vertices strictly inside it, in order.
+  // Each hole edge r[i] -> r[i + 1] with its face, the face's corner where that edge begins in
+  // the face's own winding, and the hole's vertices strictly inside it, in order.
   struct Run {
     Index face;
+    int corner;
     std::vector<Index> inner;
   };
   std::vector<Run> runs(n);
@@ -181,7 +183,15 @@ bool split_along_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<
     for (std::size_t e = 0; e < i; ++e) {
       if (runs[e].face == f) return false;
     }
+    const Face& face = m.faces[f];
+    int c = 0;
+    while (c < 3 && !((face[c] == r[i] && face[(c + 1) % 3] == r[k]) ||
+                      (face[c] == r[k] && face[(c + 1) % 3] == r[i]))) {
+      ++c;
+    }
+    if (c == 3) return false;
     runs[i].face = f;
+    runs[i].corner = c;
     const double lo = std::min(t[i], t[k]), hi = std::max(t[i], t[k]);
     std::vector<std::pair<double, Index>> inside;
     for (std::size_t v = 0; v < n; ++v) {
@@ -209,16 +219,10 @@ bool split_along_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<
     if (runs[i].inner.empty()) continue;
     const Index f = runs[i].face;
     const Face face = m.faces[f];
-    const Index a = r[i], b = r[(i + 1) % n];
-    int c = 0;  // the face's corner where the hole edge begins in the face's own winding
-    while (c < 3 && !((face[c] == a && face[(c + 1) % 3] == b) ||
-                      (face[c] == b && face[(c + 1) % 3] == a))) {
-      ++c;
-    }
-    if (c == 3) return false;  // cannot happen: the edge is the face's (nothing written yet)
+    const int c = runs[i].corner;
     const Index p = face[c], q = face[(c + 1) % 3], apex = face[(c + 2) % 3];
     std::vector<Index> chain{p};
-    if (p == a) {
+    if (p == r[i]) {
       chain.insert(chain.end(), runs[i].inner.begin(), runs[i].inner.end());
     } else {
       chain.insert(chain.end(), runs[i].inner.rbegin(), runs[i].inner.rend());

@@ -90,7 +90,8 @@ std::size_t split_flat_faces(Work& w, double length) {
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
     std::vector<std::uint8_t> keep(m.face_count(), 1), touched(m.face_count(), 0);
-    std::vector<std::uint8_t> moved(m.vertex_count(), 0);  // vertices around a weld
+    // Vertices of a split or round a weld in this pass: one change per neighbourhood a pass.
+    std::vector<std::uint8_t> moved(m.vertex_count(), 0);
     std::vector<Index> onto(m.vertex_count());
     for (std::size_t v = 0; v < onto.size(); ++v) onto[v] = static_cast<Index>(v);
     std::vector<Index> ring_begin, ring;
@@ -102,12 +103,18 @@ std::size_t split_flat_faces(Work& w, double length) {
         const Index g = adj.opposite_face[4 * f + static_cast<std::size_t>(k)];
         const Face& t = m.faces[f];
         const Index p = t[k], q = t[(k + 1) % 3];
-        if (g == kInvalid || touched[g] || moved[p] || moved[q]) continue;
+        if (g == kInvalid || touched[g]) continue;
         if (ring.empty()) rings(m, ring_begin, ring);
         const auto around = [&](Index v) {
           return std::span<const Index>(ring.data() + ring_begin[v],
                                         ring_begin[v + 1] - ring_begin[v]);
         };
+        // The rings were taken at the pass's start: nothing around may have changed since.
+        const auto still = [&](Index v) {
+          return !moved[v] && std::none_of(around(v).begin(), around(v).end(),
+                                           [&](Index u) { return moved[u] != 0; });
+        };
+        if (!still(p) || !still(q)) continue;
         // Link condition: p and q share exactly the two corners across their side.
         std::vector<Index> common;
         std::set_intersection(around(p).begin(), around(p).end(), around(q).begin(),
@@ -133,7 +140,7 @@ std::size_t split_flat_faces(Work& w, double length) {
       while (j < 3 && !(u[j] == b && u[(j + 1) % 3] == a)) ++j;
       if (j == 3) continue;  // run the same way: an inconsistent edge, left to the report
       const Index d = u[(j + 2) % 3];
-      if (d == c) continue;
+      if (d == c || moved[a] || moved[b] || moved[c] || moved[d]) continue;
       int unused = 0;
       const Face split_b{b, c, d, kInvalid}, split_a{c, a, d, kInvalid};
       if (flat_with_inside_corner(m, u, unused) || face_area(m.positions, split_b) <= 0 ||
@@ -148,6 +155,7 @@ std::size_t split_flat_faces(Work& w, double length) {
       touched.push_back(1);
       keep[f] = 0;
       touched[f] = touched[g] = 1;
+      for (Index v : {a, b, c, d}) moved[v] = 1;
       ++done;
     }
     if (done == 0 && welded == 0) break;
