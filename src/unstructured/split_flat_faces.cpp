@@ -86,6 +86,12 @@ void rings(const SurfaceMesh& m, std::vector<Index>& begin, std::vector<Index>& 
 
 std::size_t split_flat_faces(Work& w, double length) {
   SurfaceMesh& m = w.mesh;
+  // Most merges have none: a scan, and no adjacency built (the merge's cost is issue 4's goal).
+  const bool any = std::any_of(m.faces.begin(), m.faces.end(), [&](const Face& t) {
+    int k = 0;
+    return flat_with_spot_side(m, t, k) || flat_with_inside_corner(m, t, k);
+  });
+  if (!any) return 0;
   std::size_t total = 0;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
