@@ -55,53 +55,73 @@ bool edge_cut_less(const EdgeCut& a, const EdgeCut& b) {
   return a.in != b.in ? a.in < b.in : a.out < b.out;
 }
 
-// Whether n agrees (either way) with the normal of the closest point cp, or with the normal just
-// beside it on its patch: on a knuckle inside a patch (a chine at a repeated knot) the normal at
-// cp is one side's, and n, a knuckle vertex's own, may be the other's (property seed 1536: the
-// chine vertices of an overlapping patch were left uncovered, and the faces between them stayed
-// over the patch below).
-bool normal_agrees(std::span<const Patch> patches, const ClosestPoint& cp, const Vec3d& n) {
-  if (std::abs(dot(n, cp.normal)) >= kMinNormalCos) return true;
+// How a covering layer's normal runs against the covered vertex's: either way is asked of a
+// seed (patches may arrive flipped); a covered region grows only over layers that run the way
+// its seed's did.
+enum class Way : std::int8_t { kEither = 0, kSame = 1, kOpposite = -1 };
+
+// How n agrees with the normal of the closest point cp, or with the normal just beside it on
+// its patch (kEither: not at all, or not the way asked): on a knuckle inside a patch (a chine at
+// a repeated knot) the normal at cp is one side's, and n, a knuckle vertex's own, may be the
+// other's (property seed 1536: the chine vertices of an overlapping patch were left uncovered,
+// and the faces between them stayed over the patch below).
+Way normal_agrees(std::span<const Patch> patches, const ClosestPoint& cp, const Vec3d& n,
+                  Way asked) {
+  const auto agrees = [&](const Vec3d& other) {
+    const double c = dot(n, other);
+    if (asked != Way::kOpposite && c >= kMinNormalCos) return Way::kSame;
+    if (asked != Way::kSame && -c >= kMinNormalCos) return Way::kOpposite;
+    return Way::kEither;
+  };
+  if (const Way w = agrees(cp.normal); w != Way::kEither) return w;
   const NurbsSurface& s = patches[cp.patch].surface;
   const double du = kBeside * (s.u1 - s.u0), dv = kBeside * (s.v1 - s.v0);
   for (const Vec2d d : {Vec2d{du, 0}, Vec2d{-du, 0}, Vec2d{0, dv}, Vec2d{0, -dv}}) {
     const double u = std::clamp(cp.uv.x + d.x, s.u0, s.u1);
     const double v = std::clamp(cp.uv.y + d.y, s.v0, s.v1);
-    if (std::abs(dot(n, normal(s, u, v))) >= kMinNormalCos) return true;
+    if (const Way w = agrees(normal(s, u, v)); w != Way::kEither) return w;
   }
-  return false;
+  return Way::kEither;
 }
 
+// A patch below that covers a vertex, and the way its normal runs against the vertex's.
+struct Cover {
+  PatchId patch = kInvalid;
+  Way way = Way::kEither;
+};
+
 // The closest point of x within `limit` on the patches first <= q < last whose normal agrees
-// with n (either way), or an invalid point. At a knuckle the nearest of them may be the patch
-// across it, as near as the one x lies on: that one is searched around, twice at most.
-ClosestPoint closest_alike(const HullQuery& q, std::span<const Patch> patches, const Vec3d& x,
-                           const Vec3d& n, PatchId first, PatchId last, double limit,
-                           int depth = 2) {
+// with n the way asked, with the way it does, or an invalid point. At a knuckle the nearest of
+// them may be the patch across it, as near as the one x lies on: that one is searched around,
+// twice at most.
+std::pair<ClosestPoint, Way> closest_alike(const HullQuery& q, std::span<const Patch> patches,
+                                           const Vec3d& x, const Vec3d& n, Way asked, PatchId first,
+                                           PatchId last, double limit, int depth = 2) {
   if (first >= last) return {};
   // The triangles stray from the surface by up to the chord tolerance: search them wider than
   // the distance asked of the exact surfaces.
   const ClosestPoint cp = q.closest_point_in_range(x, first, last, 20 * limit);
   if (!cp.valid() || !(cp.distance <= limit)) return {};
-  if (normal_agrees(patches, cp, n)) return cp;
+  if (const Way w = normal_agrees(patches, cp, n, asked); w != Way::kEither) return {cp, w};
   if (depth == 0) return {};
-  const ClosestPoint below = closest_alike(q, patches, x, n, first, cp.patch, limit, depth - 1);
-  const ClosestPoint above = closest_alike(q, patches, x, n, cp.patch + 1, last, limit, depth - 1);
-  if (!below.valid()) return above;
-  if (!above.valid()) return below;
-  return above.distance < below.distance ? above : below;
+  const auto below = closest_alike(q, patches, x, n, asked, first, cp.patch, limit, depth - 1);
+  const auto above = closest_alike(q, patches, x, n, asked, cp.patch + 1, last, limit, depth - 1);
+  if (!below.first.valid()) return above;
+  if (!above.first.valid()) return below;
+  return above.first.distance < below.first.distance ? above : below;
 }
 
 // The nearest patch below the vertex's own whose surface the vertex lies on with an agreeing
 // normal, or kInvalid. (Its own normal at a domain border once came out as noise, property seed
 // 4877: the knot span there was 1.1e-16 wide; the kernel's find_span now steps over such spans.)
-PatchId covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
-                       Index v, double distance) {
+Cover covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
+                     Index v, double distance, Way asked) {
   const PatchId own = m.vertex_patch[v];
-  if (own == 0) return kInvalid;
+  if (own == 0) return {};
   const Vec2d uv = m.vertex_uv[v];
   const Vec3d n = normal(patches[own].surface, uv.x, uv.y);
-  return closest_alike(q, patches, m.positions[v], n, 0, own, distance).patch;
+  const auto [cp, way] = closest_alike(q, patches, m.positions[v], n, asked, 0, own, distance);
+  return {cp.patch, way};
 }
 
 // Border vertices that may lie inside another patch: no other patch's border edge near them, or
@@ -233,12 +253,11 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
 // instead gave kcs a query over 10,000 faces for two covered seeds. Vertices are kept as they
 // are.
 SurfaceMesh faces_under(const SurfaceMesh& m, std::span<const Index> candidates,
-                        std::span<const PatchId> seed_cover, std::size_t patch_count,
-                        double margin) {
+                        std::span<const Cover> seed_cover, std::size_t patch_count, double margin) {
   const std::vector<BBox3d> box = patch_boxes(m, patch_count, margin);
   std::vector<std::uint8_t> grows(patch_count, 0);
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (seed_cover[i] != kInvalid) grows[m.vertex_patch[candidates[i]]] = 1;
+    if (seed_cover[i].patch != kInvalid) grows[m.vertex_patch[candidates[i]]] = 1;
   }
   std::vector<PatchId> growing;  // ascending
   for (std::size_t p = 0; p < patch_count; ++p) {
@@ -467,11 +486,17 @@ std::size_t insert_lower_corners(Work& w, const Border& b, std::vector<PatchId>&
 }
 
 // Grows the covered region of each patch from its covered seeds across its own edges
-// (breadth-first, ring by ring: each ring is checked in parallel and committed in order).
+// (breadth-first, ring by ring: each ring is checked in parallel and committed in order), over
+// layers whose normals run against the vertices' the way the seed's did: where a full hull's
+// two halves meet at a knife edge (a Wigley hull's bow and keel), each half lies within the
+// overlap distance of the other with its normal opposite, and a region grown from a true overlap
+// of one half's patches spread into the other half and cut away the strip along the keel
+// (generated Wigley hull, 100 patches, 5% overlaps). A vertex is reached first from the first
+// frontier vertex in ring order, and takes the way asked of it there.
 // Returns the covering patch per vertex (kInvalid: uncovered), or nothing when cancelled.
 std::vector<PatchId> grow_cover(const SurfaceMesh& m, std::span<const Patch> patches,
                                 const HullQuery& query, std::span<const Index> candidates,
-                                std::span<const PatchId> seed_cover, double distance,
+                                std::span<const Cover> seed_cover, double distance,
                                 Progress& progress) {
   // Neighbours by face edge, both ways (a border vertex's last neighbour follows it in no face),
   // as one array per vertex range: count -> exclusive scan -> fill in face order.
@@ -491,35 +516,40 @@ std::vector<PatchId> grow_cover(const SurfaceMesh& m, std::span<const Patch> pat
     }
   }
   std::vector<PatchId> cover(m.vertex_count(), kInvalid);
+  std::vector<Way> way(m.vertex_count(), Way::kEither);
   std::vector<std::uint8_t> checked(m.vertex_count(), 0);
   std::vector<Index> frontier;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const Index v = candidates[i];
     checked[v] = 1;
-    if (seed_cover[i] != kInvalid) {
-      cover[v] = seed_cover[i];
+    if (seed_cover[i].patch != kInvalid) {
+      cover[v] = seed_cover[i].patch;
+      way[v] = seed_cover[i].way;
       frontier.push_back(v);
     }
   }
   while (!frontier.empty()) {
     std::vector<Index> next;
+    std::vector<Way> asked;
     for (Index v : frontier) {
       for (Index k = ring_first[v]; k < ring_first[v + 1]; ++k) {
         const Index u = ring[k];
         if (!checked[u]) {
           checked[u] = 1;
           next.push_back(u);
+          asked.push_back(way[v]);
         }
       }
     }
-    std::vector<PatchId> found(next.size(), kInvalid);
+    std::vector<Cover> found(next.size());
     parallel_for(0, next.size(), [&](std::size_t i) {
-      found[i] = covering_patch(query, patches, m, next[i], distance);
+      found[i] = covering_patch(query, patches, m, next[i], distance, asked[i]);
     });
     frontier.clear();
     for (std::size_t i = 0; i < next.size(); ++i) {
-      if (found[i] == kInvalid) continue;
-      cover[next[i]] = found[i];
+      if (found[i].patch == kInvalid) continue;
+      cover[next[i]] = found[i].patch;
+      way[next[i]] = found[i].way;
       frontier.push_back(next[i]);
     }
     if (progress.cancelled()) return {};
@@ -729,17 +759,18 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   // more than the merge itself. Only when a seed is covered is a query built over the patches
   // that may lie under a patch with a covered seed, for growing the covered regions and cutting
   // them.
-  std::vector<PatchId> seed_cover(candidates.size(), kInvalid);
+  std::vector<Cover> seed_cover(candidates.size());
   {
     const SurfaceMesh near = faces_near(m, candidates, patches.size(), 20 * distance);
     if (near.faces.empty()) return stats;
     const HullQuery seed_query(patches, near);
     parallel_for(0, candidates.size(), [&](std::size_t i) {
-      seed_cover[i] = covering_patch(seed_query, patches, m, candidates[i], distance);
+      seed_cover[i] = covering_patch(seed_query, patches, m, candidates[i], distance, Way::kEither);
     });
   }
   if (progress.cancelled()) return stats;
-  if (std::all_of(seed_cover.begin(), seed_cover.end(), [](PatchId p) { return p == kInvalid; })) {
+  if (std::all_of(seed_cover.begin(), seed_cover.end(),
+                  [](const Cover& c) { return c.patch == kInvalid; })) {
     return stats;
   }
   const HullQuery query(patches,
