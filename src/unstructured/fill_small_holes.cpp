@@ -23,6 +23,8 @@ namespace hm::merge {
 namespace {
 
 constexpr std::size_t kMaxHoleVertices = 16;
+// A hole on one line may have more (close_flat_holes): its splits add no face of its own.
+constexpr std::size_t kMaxFlatHoleVertices = 128;
 
 // Faces closing loop r (its vertices in its faces' winding) by ear clipping in the plane square to
 // `up` (the faces' side the new faces must face too): of the ears that are convex there, hold no
@@ -530,6 +532,25 @@ HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions
     }
   }
   return stats;
+}
+
+std::size_t close_flat_holes(Work& w, const EdgeAdjacency& adj) {
+  std::vector<std::uint8_t> split(w.mesh.face_count(), 0);
+  std::vector<std::uint8_t> changed(w.mesh.vertex_count(), 0);
+  std::size_t closed = 0;
+  for (const BoundaryLoop& loop : adj.boundary_loops) {
+    if (!loop.closed) continue;
+    for (const auto& [r, edges] : cycles_of(loop)) {
+      if (r.size() < 3 || r.size() > kMaxFlatHoleVertices) continue;
+      if (std::any_of(r.begin(), r.end(), [&](Index v) { return changed[v] != 0; })) continue;
+      const bool done = r.size() == 3 ? split_across_flat_hole(w, adj, r, edges, split)
+                                      : split_along_flat_hole(w, adj, r, edges, split);
+      if (!done) continue;
+      for (Index v : r) changed[v] = 1;
+      ++closed;
+    }
+  }
+  return closed;
 }
 
 }  // namespace hm::merge

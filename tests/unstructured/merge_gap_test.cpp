@@ -118,5 +118,23 @@ TEST(MergeGaps, GapsClosingOnAStraightTransomEdgeLeaveNoFaceOfNoArea) {
   }
 }
 
+// A full round-bilge hull of 2 patches with 0.1 m gaps (1e-3 L) at 40,000 triangles: the zipper
+// and the flat-face splits left a slit of 28 vertices on one line, 9.5 cm long, where the two
+// halves' transom edges meet at the centre plane (too many vertices for the hole pass, and it
+// was not flat when that ran). The merge's last step closes such holes.
+TEST(MergeGaps, ASlitOnOneLineLeftByTheLastStepsIsClosed) {
+  HullSpec spec;
+  spec.kind = HullKind::kRoundBilge;
+  spec.patches = 2;
+  spec.full_hull = true;
+  spec.defects.gap = 0.1;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 40'000));
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  EXPECT_EQ(zero_area_faces(m.merged.mesh), 0u);
+}
+
 }  // namespace
 }  // namespace hm::test
