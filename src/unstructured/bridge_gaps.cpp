@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "mesh/adjacency.h"
+#include "unstructured/merge_border.h"
 #include "unstructured/merge_steps.h"
 
 namespace hm::merge {
@@ -81,6 +82,18 @@ const double kNotchApex = std::numbers::pi / 3;
 // across a sharp corner of the outline (a full hull's bow at the deck) stands square to them.
 constexpr double kNotchAgree = 0.3;
 
+// A notch whose width at the third vertex from its apex is at most this times its width at the
+// first is a slit between two runs that stay side by side: a gap, whichever way its faces stand.
+// Where a full hull's halves stand apart at a sharp stem (a Wigley hull with 0.1 m gaps at
+// 40,000 triangles), the strip that closes the slit stands square to both sides, and the
+// agreement test took it for a lid: 5 m of slit stayed open at each end, below the deck. A lid
+// across a sharp corner of the outline widens step by step (1 : 2 : 3 at a bow's deck edge). A
+// slit is zipped as a thin loop is (diagonals up to kLongestDiagonal widths: its runs' edges
+// may be longer than it is wide) while each new vertex stays within `widest` of the other run
+// and each new face agrees with the one before it (the strip turns no corner: at the slit's
+// mouth the next face would lie across the deck).
+constexpr double kSlitWidening = 1.5;
+
 // Faces closing a notch of cycle r (its vertices in its faces' winding, edges[i] leaving r[i])
 // at apex i: where a gap between two patches opens onto a boundary (the transom of a full hull
 // whose halves stand apart meets the deck there), the loop runs into the gap and back out, and
@@ -98,17 +111,28 @@ std::vector<Face> close_notch(const SurfaceMesh& m, const EdgeAdjacency& adj,
   const auto face_of = [&](std::size_t e) { return adj.edges[edges[e % k]].first_slot / 4; };
   const Index f_in = face_of(i + k - 1), f_out = face_of(i);
   if (m.face_patch[f_in] == m.face_patch[f_out]) return {};
-  const auto ok = [&](Index u, Index v) {
-    return !is_edge(u, v) && norm(m.positions[u] - m.positions[v]) <= widest;
-  };
-  const auto agrees = [&](const Face& add, Index along) {
-    return dot(face_normal(m.positions, add), face_normal(m.positions, m.faces[along])) >
-           kNotchAgree;
-  };
   // a[n] = r[i + n] (with the loop), b[n] = r[i - n] (against it); a[0] = b[0] is the apex.
   const auto a = [&](std::size_t n) { return r[(i + n) % k]; };
   const auto b = [&](std::size_t n) { return r[(i + k - n % k) % k]; };
-  if (k < 5 || !ok(a(1), b(1))) return {};
+  const auto width = [&](std::size_t n) { return norm(m.positions[a(n)] - m.positions[b(n)]); };
+  if (k < 5 || !(width(1) <= widest)) return {};
+  const bool slit = k >= 8 && width(3) <= kSlitWidening * width(1);
+  const double reach = slit ? kLongestDiagonal * widest : widest;
+  const auto ok = [&](Index u, Index v) {
+    return !is_edge(u, v) && norm(m.positions[u] - m.positions[v]) <= reach;
+  };
+  // A slit's new vertex u within `widest` of the other run's edge v0 -> v1.
+  const auto beside = [&](Index u, Index v0, Index v1) {
+    return !slit ||
+           closest_on_segment(m.positions[u], m.positions[v0], m.positions[v1]).distance <= widest;
+  };
+  if (!ok(a(1), b(1))) return {};
+  std::vector<Face> out;
+  const auto agrees = [&](const Face& add, Index along) {
+    const Vec3d n = face_normal(m.positions, add);
+    if (!slit) return dot(n, face_normal(m.positions, m.faces[along])) > kNotchAgree;
+    return out.empty() || dot(n, face_normal(m.positions, out.back())) > kNotchAgree;
+  };
   // The loop turns back at the apex (within kNotchApex), not merely from one patch to the next
   // along a run.
   const Vec3d to_a = normalized(m.positions[a(1)] - m.positions[a(0)]);
@@ -116,15 +140,16 @@ std::vector<Face> close_notch(const SurfaceMesh& m, const EdgeAdjacency& adj,
   if (!(dot(to_a, to_b) >= std::cos(kNotchApex))) return {};
   const Face first{a(1), a(0), b(1), kInvalid};
   if (!agrees(first, f_in) || !agrees(first, f_out)) return {};
-  std::vector<Face> out{first};
+  out.push_back(first);
   std::size_t ia = 1, ib = 1;
   while (ia + ib + 2 < k) {
     // Step a joins the loop edge a[ia] -> a[ia + 1], step b the edge b[ib + 1] -> b[ib].
     const Face fa{a(ia + 1), a(ia), b(ib), kInvalid}, fb{b(ib), b(ib + 1), a(ia), kInvalid};
     // A vertex another notch's faces took is where this one's runs stop.
-    const bool can_a = !used[a(ia + 1)] && ok(a(ia + 1), b(ib)) && agrees(fa, face_of(i + ia));
-    const bool can_b =
-        !used[b(ib + 1)] && ok(a(ia), b(ib + 1)) && agrees(fb, face_of(i + k - ib - 1));
+    const bool can_a = !used[a(ia + 1)] && ok(a(ia + 1), b(ib)) &&
+                       beside(a(ia + 1), b(ib), b(ib + 1)) && agrees(fa, face_of(i + ia));
+    const bool can_b = !used[b(ib + 1)] && ok(a(ia), b(ib + 1)) &&
+                       beside(b(ib + 1), a(ia), a(ia + 1)) && agrees(fb, face_of(i + k - ib - 1));
     if (!can_a && !can_b) break;
     bool step_a = can_a;
     if (can_a && can_b) {

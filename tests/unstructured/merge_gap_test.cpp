@@ -136,5 +136,34 @@ TEST(MergeGaps, ASlitOnOneLineLeftByTheLastStepsIsClosed) {
   EXPECT_EQ(zero_area_faces(m.merged.mesh), 0u);
 }
 
+// Wigley hulls of 2 patches with 0.1 m gaps (1e-3 L) at 40,000 triangles. The full hull's halves
+// stand 0.074-0.1 m apart at each sharp stem, a slit from z = 2.8 m up to the deck: the strip
+// that closes it stands square to both sides, and the notch's agreement test took it for a lid
+// (20 m of boundary there called transom edge). The half hull's gap between its two patches
+// opens onto the deck, a slit whose edges (0.23 m) are longer than it is wide (8 m of hole, a gap
+// reported open). A slit, whose width does not grow from its apex, now closes up to its mouth;
+// the boundary is the outline alone, as long as the clean hull's.
+TEST(MergeGaps, SlitsOpeningOntoTheDeckCloseUpToTheirMouth) {
+  for (const bool full : {true, false}) {
+    SCOPED_TRACE(full ? "full" : "half");
+    HullSpec spec;
+    spec.kind = HullKind::kWigley;
+    spec.patches = 2;
+    spec.full_hull = full;
+    spec.defects.gap = 0.1;
+    const std::vector<Patch> broken = generate_hull(spec).patches;
+    spec.defects = {};
+    const std::vector<Patch> clean = generate_hull(spec).patches;
+    const Merged m = merge_of(broken, edge_length_for_triangles(broken, 40'000));
+    const Merged ref = merge_of(clean, edge_length_for_triangles(clean, 40'000));
+    EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+    EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+    EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+    EXPECT_TRUE(m.merged.report.open_gaps.empty());
+    EXPECT_NEAR(boundary_length(m) / boundary_length(ref), 1.0, 5e-3);
+    EXPECT_NEAR(m.merged.report.enclosed_volume / ref.merged.report.enclosed_volume, 1.0, 5e-3);
+  }
+}
+
 }  // namespace
 }  // namespace hm::test
