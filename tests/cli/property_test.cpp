@@ -36,6 +36,7 @@ struct Case {
   std::uint64_t seed = 0;
   std::string generate;  // `hullmesh generate` words, output excluded
   double draft = 0;      // m, the floating draft the meshers are given
+  double trim = 0;       // degrees, bow down positive (HM_PROPERTY_WIDE only)
   int panels = 0;
   bool overlap = false;  // patches overlap: the file's exact volume counts the overlaps twice
 };
@@ -68,7 +69,7 @@ Case random_case(std::uint64_t seed) {
   // Full hulls with gaps are in since 2026-12-04 (evening): until the snap let the two halves
   // meet at a fine stem or forefoot and where the hull is a fin of no thickness, their seam in
   // the centre plane stayed open below the waterline (Merge.FullHullHalvesWithGapsClose*).
-  if (pick(3) == 0) g << " --gap " << 1e-4 * length;
+  const bool gap = pick(3) == 0;
   // Overlapping patches (5% of a patch). The displacement check below is skipped for them: the
   // volume it compares against, the patches' exact integrals, counts every overlap twice (5-10%
   // off). Left out until 2026-12-04, when the merge and cut still left zero-area faces and an
@@ -86,10 +87,16 @@ Case random_case(std::uint64_t seed) {
   if (pick(3) == 0) g << " --flip-every " << 2 + pick(3);
   Case c;
   c.seed = seed;
-  c.generate = g.str();
   c.overlap = overlap;
   c.draft = draft * uniform(0.6, 1.1);
   c.panels = 300 + 100 * pick(10);
+  // HM_PROPERTY_WIDE: gaps up to issue 4's 1e-3 L and a trim of up to 1 degree either way, drawn
+  // after everything else so that a seed's other draws stay what they were.
+  static const bool wide = std::getenv("HM_PROPERTY_WIDE") != nullptr;
+  const double gap_width = wide ? uniform(1e-4, 1e-3) * length : 1e-4 * length;
+  if (wide && pick(2) == 0) c.trim = uniform(-1, 1);
+  if (gap) g << " --gap " << gap_width;
+  c.generate = g.str();
   return c;
 }
 
@@ -98,9 +105,12 @@ void check_case(const Case& c, const fs::path& dir) {
   // repeats the case by hand.
   std::ostringstream draft;
   draft << c.draft;
+  std::ostringstream trim;
+  if (c.trim != 0) trim << " --trim " << c.trim;
   const std::string replay = "replay with HM_PROPERTY_SEED=" + std::to_string(c.seed) +
-                             " (generate " + c.generate + ", draft " + draft.str() + ", " +
-                             std::to_string(c.panels) + " panels)";
+                             (std::getenv("HM_PROPERTY_WIDE") ? " HM_PROPERTY_WIDE=1" : "") +
+                             " (generate " + c.generate + ", draft " + draft.str() + trim.str() +
+                             ", " + std::to_string(c.panels) + " panels)";
   SCOPED_TRACE(replay);
   const fs::path igs = dir / ("hull_" + std::to_string(c.seed) + ".igs");
   const auto g = run_hullmesh("-q generate " + c.generate + " -o " + q(igs));
@@ -109,7 +119,7 @@ void check_case(const Case& c, const fs::path& dir) {
     const fs::path out = dir / (mesher + "_" + std::to_string(c.seed) + ".obj");
     std::ostringstream args;
     args << "-q --threads 2 " << mesher << " " << q(igs) << " -o " << q(out) << " --panels "
-         << c.panels << " --draft " << draft.str();
+         << c.panels << " --draft " << draft.str() << trim.str();
     const auto r = run_hullmesh(args.str());  // HULLMESH_VALIDATE=1: the invariants
     ASSERT_EQ(r.exit_code, 0) << mesher << ": " << r.out;
     const nlohmann::json record = test::read_json(fs::path(out).replace_extension(".run.json"));

@@ -165,5 +165,22 @@ TEST(MergeGaps, SlitsOpeningOntoTheDeckCloseUpToTheirMouth) {
   }
 }
 
+// A half Wigley of 24 patches with 0.1 m gaps at 400,000 triangles: at each station seam the snap
+// welds the tips of the two patches' borders at the keel and leaves a V notch of 62-64 degrees
+// in the centre-plane outline, past the 60 degrees a notch's apex was allowed (24 gaps reported
+// open, 2 m of hole). An apex may now open to 90 degrees; no notch face may be flat (at the
+// stem, where two borders run along one straight line, one had no area).
+TEST(MergeGaps, VNotchesAtTheKeelClose) {
+  HullSpec spec;
+  spec.kind = HullKind::kWigley;
+  spec.patches = 24;
+  spec.defects.gap = 0.1;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 400'000));
+  expect_clean_half_hull(m, "wigley, 24 patches, 0.1 m gaps, 400,000 triangles");
+  EXPECT_TRUE(m.merged.report.open_gaps.empty());
+  EXPECT_EQ(zero_area_faces(m.merged.mesh), 0u);
+}
+
 }  // namespace
 }  // namespace hm::test
