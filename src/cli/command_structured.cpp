@@ -199,6 +199,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
           "  distorted border panels: %zu; repaired by removal %zu, by extension %zu, by a split "
           "%zu\n",
           r.border_distorted, r.border_removed, r.border_extended, r.border_split);
+    if (r.nodes_welded > 0) std::printf("  nodes on one spot made one: %zu\n", r.nodes_welded);
     if (r.wedges_collapsed > 0)
       std::printf("  wedge quads made triangles (a short side's ends merged): %zu\n",
                   r.wedges_collapsed);

@@ -189,6 +189,7 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   }
   rep.edge_snaps = snap_to_edge_curves(patches, surface, features, rows, slots, out.knuckle_edges,
                                        query.length_scale(), metric, mesh);
+  rep.nodes_welded = weld_coincident_nodes(out.knuckle_edges, mesh);
   if (options.repair_border_panels) {
     rep.wedges_collapsed =
         collapse_wedges(slots, out.knuckle_edges, options.min_opposite_ratio, mesh);

@@ -92,6 +92,7 @@ struct StructuredReport {
   std::size_t edge_snaps = 0;      // border and knuckle nodes moved onto a patch edge curve
   // Distorted border panels, and how many each repair took (the rest were best left).
   std::size_t border_distorted = 0, border_removed = 0, border_extended = 0, border_split = 0;
+  std::size_t nodes_welded = 0;      // nodes on one spot made one (weld_coincident_nodes)
   std::size_t wedges_collapsed = 0;  // wedge quads made triangles by merging a short side's ends
   std::size_t non_convex_split = 0;  // quads left non-convex, split along the reflex diagonal
   std::size_t folds_flipped = 0;     // pairs of triangles folded onto each other, flipped

@@ -170,6 +170,13 @@ std::size_t collapse_wedges(std::span<const NodeSlot> slots,
                             std::span<const std::array<Index, 2>> knuckle_edges,
                             double min_opposite_ratio, SurfaceMesh& mesh);
 
+// Nodes on one spot (a panel side no longer than 1e-8 of the panel's longest side) become one,
+// the later merging into the earlier, where the panels around stay manifold; knuckle edges follow
+// and a panel that loses a corner becomes a triangle or goes. Nothing moves. Serial in face
+// order. Returns the nodes merged.
+std::size_t weld_coincident_nodes(std::vector<std::array<Index, 2>>& knuckle_edges,
+                                  SurfaceMesh& mesh);
+
 // Quads left with a reflex or flat corner become two triangles along the diagonal through it
 // (the split whose triangles both keep the quad's orientation). Nothing moves. Serial in face
 // order: the first triangle takes the quad's place, the second goes to the end with its block.

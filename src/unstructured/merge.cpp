@@ -303,7 +303,10 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   weld_folds(w, adj, length, r);
   r.flat_faces_split = merge::split_flat_faces(w, length);
   if (r.flat_faces_split > 0) adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
-  if (const std::size_t closed = merge::close_flat_holes(w, adj); closed > 0) {
+  // A few passes: a hole that shares a vertex with one closed waits for the next.
+  for (int pass = 0; pass < 3; ++pass) {
+    const std::size_t closed = merge::close_flat_holes(w, adj);
+    if (closed == 0) break;
     r.holes_filled += closed;
     adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   }

@@ -16,7 +16,10 @@
 //   - seeds 5395 and 5498: a full hull with a centre gap whose bulb's neck lies just aft of a
 //     station; the strip forward of it joined bulb and stem through the neck and zipped both to
 //     the bulb alone, so a quad stood in the centre plane through the stem's cap (2 pairs of
-//     panels through each other).
+//     panels through each other);
+//   - seed 9107 (HM_PROPERTY_WIDE): a round-bilge hull trimmed 0.75 degrees by the bow, whose
+//     bulb's stem got two nodes 2.5e-11 m apart and a triangle of no area between them (now one
+//     node: weld_coincident_nodes).
 #include "support/replay.h"
 
 namespace hm {
@@ -62,6 +65,10 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
        "round-bilge --length 145.616 --beam 31.7095 --draft 10.6771 --depth 12.8515 --patches 13 "
        "--seed 5498 --full --gap 0.0145616",
        "11.734374", 1200},
+      {"two stem nodes on one spot 9107",
+       "round-bilge --length 45.5777 --beam 4.86558 --draft 1.33358 --depth 2.04774 --patches 6 "
+       "--seed 9107 --duplicate-points",
+       "1.31747", 800, "--trim 0.75142"},
   };
   test::expect_replays_break_no_hard_rule("structured", cases, "cli_structured_replays");
 }

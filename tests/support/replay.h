@@ -21,6 +21,7 @@ struct Replay {
   const char* generate;  // `hullmesh generate` arguments
   const char* draft;     // m
   int panels;
+  const char* position = "";  // more floating options (a trim)
 };
 
 // `mesher` is the subcommand (structured or unstructured); `scratch` names the scratch folder.
@@ -33,8 +34,9 @@ inline void expect_replays_break_no_hard_rule(const std::string& mesher,
     const fs::path igs = dir / "hull.igs", out = dir / "panels.obj";
     ASSERT_EQ(run_hullmesh(std::string("-q generate ") + c.generate + " -o " + q(igs)).exit_code, 0)
         << c.name;
-    const auto r = run_hullmesh("-q --validate " + mesher + " " + q(igs) + " -o " + q(out) +
-                                " --panels " + std::to_string(c.panels) + " --draft " + c.draft);
+    const auto r =
+        run_hullmesh("-q --validate " + mesher + " " + q(igs) + " -o " + q(out) + " --panels " +
+                     std::to_string(c.panels) + " --draft " + c.draft + " " + c.position);
     ASSERT_EQ(r.exit_code, 0) << c.name << ": " << r.out;
     const nlohmann::json record = read_json(fs::path(out).replace_extension(".run.json"));
     ASSERT_TRUE(record.is_object()) << c.name;
