@@ -19,6 +19,16 @@ double boundary_length(const Merged& m) {
   return sum;
 }
 
+// A generated hull of the default size with gaps of up to `gap` m between its patches.
+HullSpec with_gaps(HullKind kind, int patches, bool full, double gap) {
+  HullSpec spec;
+  spec.kind = kind;
+  spec.patches = patches;
+  spec.full_hull = full;
+  spec.defects.gap = gap;
+  return spec;
+}
+
 // Chine 100 with every defect at 128,000 triangles: the chine's two borders stand 0.07-0.1 m
 // apart from the transom to the stem, a slit that opens onto the outline at both ends, so the
 // outline was the only loop and ran 174 m along it. The measured widths were looked up by
@@ -123,12 +133,8 @@ TEST(MergeGaps, GapsClosingOnAStraightTransomEdgeLeaveNoFaceOfNoArea) {
 // halves' transom edges meet at the centre plane (too many vertices for the hole pass, and it
 // was not flat when that ran). The merge's last step closes such holes.
 TEST(MergeGaps, ASlitOnOneLineLeftByTheLastStepsIsClosed) {
-  HullSpec spec;
-  spec.kind = HullKind::kRoundBilge;
-  spec.patches = 2;
-  spec.full_hull = true;
-  spec.defects.gap = 0.1;
-  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const std::vector<Patch> patches =
+      generate_hull(with_gaps(HullKind::kRoundBilge, 2, true, 0.1)).patches;
   const Merged m = merge_of(patches, edge_length_for_triangles(patches, 40'000));
   EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
   EXPECT_TRUE(m.adj.inconsistent_edges.empty());
@@ -146,11 +152,7 @@ TEST(MergeGaps, ASlitOnOneLineLeftByTheLastStepsIsClosed) {
 TEST(MergeGaps, SlitsOpeningOntoTheDeckCloseUpToTheirMouth) {
   for (const bool full : {true, false}) {
     SCOPED_TRACE(full ? "full" : "half");
-    HullSpec spec;
-    spec.kind = HullKind::kWigley;
-    spec.patches = 2;
-    spec.full_hull = full;
-    spec.defects.gap = 0.1;
+    HullSpec spec = with_gaps(HullKind::kWigley, 2, full, 0.1);
     const std::vector<Patch> broken = generate_hull(spec).patches;
     spec.defects = {};
     const std::vector<Patch> clean = generate_hull(spec).patches;
@@ -171,11 +173,8 @@ TEST(MergeGaps, SlitsOpeningOntoTheDeckCloseUpToTheirMouth) {
 // open, 2 m of hole). An apex may now open to 90 degrees; no notch face may be flat (at the
 // stem, where two borders run along one straight line, one had no area).
 TEST(MergeGaps, VNotchesAtTheKeelClose) {
-  HullSpec spec;
-  spec.kind = HullKind::kWigley;
-  spec.patches = 24;
-  spec.defects.gap = 0.1;
-  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const std::vector<Patch> patches =
+      generate_hull(with_gaps(HullKind::kWigley, 24, false, 0.1)).patches;
   const Merged m = merge_of(patches, edge_length_for_triangles(patches, 400'000));
   expect_clean_half_hull(m, "wigley, 24 patches, 0.1 m gaps, 400,000 triangles");
   EXPECT_TRUE(m.merged.report.open_gaps.empty());
