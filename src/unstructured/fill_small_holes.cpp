@@ -92,62 +92,25 @@ std::vector<Face> fan_of_new_diagonals(const std::vector<Index>& r, IsEdge&& is_
   return {};
 }
 
-// Heights of a three-vertex hole, over its longest side, at or below which it is flat: a vertex
-// that ended on (or within a hair of) the border edge across it, a T-junction the snap left. A
-// triangle there has no area; the face across that edge is split at the vertex instead.
+// Heights of a hole's vertices over the line through its two farthest apart, as a share of
+// their distance, at or below which it is flat: a triangle or fan there has no area.
 constexpr double kFlatHole = 1e-3;
-// Where along that side the vertex must lie (as a fraction from either end) for the split.
+// Where along that line a three-vertex hole's middle vertex must lie (as a fraction from either
+// end) for the split.
 constexpr double kFlatHoleEnd = 0.02;
 
-// Closes the flat three-vertex hole r (a boundary loop, edges[i] leaving r[i]) by splitting the
-// face across its longest side at the third vertex, as a T-junction is split. False (and nothing
-// changed) when the hole is not flat, the vertex is beyond that side's ends, or that face was
-// split already in this pass (`split`, per face).
-bool split_across_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<Index>& r,
-                            const std::vector<Index>& edges, std::vector<std::uint8_t>& split) {
-  SurfaceMesh& m = w.mesh;
-  std::size_t side = 0;  // the longest side runs r[side] -> r[side + 1]
-  double longest = -1;
-  for (std::size_t i = 0; i < 3; ++i) {
-    const double l = norm(m.positions[r[(i + 1) % 3]] - m.positions[r[i]]);
-    if (l > longest) longest = l, side = i;
-  }
-  if (!(longest > 0)) return false;
-  const Index a = r[side], c = r[(side + 1) % 3], b = r[(side + 2) % 3];
-  const Vec3d ac = m.positions[c] - m.positions[a];
-  const Vec3d ab = m.positions[b] - m.positions[a];
-  const double height = norm(cross(ac, ab)) / longest;
-  const double t = dot(ab, ac) / (longest * longest);
-  if (height > kFlatHole * longest || t < kFlatHoleEnd || t > 1 - kFlatHoleEnd) return false;
-  const Index f = adj.edges[edges[side]].first_slot / 4;
-  if (split[f]) return false;
-  const Face face = m.faces[f];
-  int k = 0;  // the face's corner where the side begins in its own winding
-  while (k < 3 &&
-         !((face[k] == a && face[(k + 1) % 3] == c) || (face[k] == c && face[(k + 1) % 3] == a))) {
-    ++k;
-  }
-  if (k == 3) return false;
-  const Index p = face[k], q = face[(k + 1) % 3], d = face[(k + 2) % 3];
-  if (d == b) return false;  // the hole is that face's own mirror: nothing to split
-  m.faces[f] = {p, b, d, kInvalid};
-  m.faces.push_back({b, q, d, kInvalid});
-  m.face_patch.push_back(m.face_patch[f]);
-  w.face_old.push_back(w.face_old[f]);
-  split[f] = 1;  // the new face is not in adj, so no later hole can name it
-  return true;
-}
-
-// Closes a hole of more than three vertices that all lie on one line (within kFlatHole of its
-// length): a slit of no width, two runs of border along the same line whose vertices the snap
-// left apart. Every face along it is split at the hole's vertices that lie inside its edge on
-// the hole, as T-junctions are split, and the two runs then share their edges. A fan or ear
-// would give faces of no area: where the two halves' keels of a full chine hull with a gap of
-// 2e-4 L or more end at the transom's bottom edge, ten vertices on that edge. False (and nothing
-// changed) when the hole is not flat, a face along it is met twice or was split already in this
-// pass, or the split runs would not pair up edge for edge.
-bool split_along_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<Index>& r,
-                           const std::vector<Index>& edges, std::vector<std::uint8_t>& split) {
+// Closes a hole whose vertices all lie on one line (within kFlatHole of its length): a slit of no
+// width, two runs of border along the same line whose vertices the snap left apart, or three
+// vertices with one on (or within a hair of) the border edge across it, a T-junction the snap
+// left. Every face along it is split at the hole's vertices that lie inside its edge on the
+// hole, as T-junctions are split, and the two runs then share their edges. A fan or ear would
+// give faces of no area: where the two halves' keels of a full chine hull with a gap of 2e-4 L
+// or more end at the transom's bottom edge, ten vertices on that edge. False (and nothing
+// changed) when the hole is not flat, a three-vertex hole's middle vertex lies within
+// kFlatHoleEnd of its long side's ends, a face along it is met twice or was split already in
+// this pass, or the split runs would not pair up edge for edge.
+bool split_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<Index>& r,
+                     const std::vector<Index>& edges, std::vector<std::uint8_t>& split) {
   SurfaceMesh& m = w.mesh;
   const std::size_t n = r.size();
   // The line: through the two vertices farthest apart.
@@ -168,6 +131,9 @@ bool split_along_flat_hole(Work& w, const EdgeAdjacency& adj, const std::vector<
     const Vec3d d = m.positions[r[i]] - origin;
     t[i] = dot(d, dir);
     if (norm(d - t[i] * dir) > kFlatHole * length) return false;
+    if (n == 3 && (t[i] < kFlatHoleEnd * length || t[i] > (1 - kFlatHoleEnd) * length)) {
+      if (i != i0 && i != j0) return false;
+    }
   }
   // Each hole edge r[i] -> r[i + 1] with its face, the face's corner where that edge begins in
   // the face's own winding, and the hole's vertices strictly inside it, in order.
@@ -462,11 +428,7 @@ HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions
       if (r.size() > 4 && !pinhole && !slit) continue;
       // The loop follows its faces' winding, so the new faces run against it.
       std::vector<Face> add;
-      if (r.size() == 3 && split_across_flat_hole(w, adj, r, edges, split)) {
-        ++stats.filled;
-        continue;
-      }
-      if (r.size() > 3 && split_along_flat_hole(w, adj, r, edges, split)) {
+      if (split_flat_hole(w, adj, r, edges, split)) {
         for (Index v : r) changed[v] = 1;
         ++stats.filled;
         continue;
@@ -543,9 +505,7 @@ std::size_t close_flat_holes(Work& w, const EdgeAdjacency& adj) {
     for (const auto& [r, edges] : cycles_of(loop)) {
       if (r.size() < 3 || r.size() > kMaxFlatHoleVertices) continue;
       if (std::any_of(r.begin(), r.end(), [&](Index v) { return changed[v] != 0; })) continue;
-      const bool done = r.size() == 3 ? split_across_flat_hole(w, adj, r, edges, split)
-                                      : split_along_flat_hole(w, adj, r, edges, split);
-      if (!done) continue;
+      if (!split_flat_hole(w, adj, r, edges, split)) continue;
       for (Index v : r) changed[v] = 1;
       ++closed;
     }

@@ -105,7 +105,7 @@ std::size_t zero_area_faces(const SurfaceMesh& m) {
 // the last hole was ten vertices on the edge, fanned (2 faces of no area); with 2 patches and
 // 0.05 m the zipper laid 19 flat faces along it; with 0.03 m two keel vertices stayed apart on
 // one spot. `--validate` refused every one. Now the hole is closed by splitting the faces along
-// it at its vertices (split_along_flat_hole), and the merge's last step splits away or welds what
+// it at its vertices (split_flat_hole), and the merge's last step splits away or welds what
 // flat faces are left (split_flat_faces).
 TEST(MergeGaps, GapsClosingOnAStraightTransomEdgeLeaveNoFaceOfNoArea) {
   struct Case {
