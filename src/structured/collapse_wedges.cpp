@@ -33,12 +33,6 @@ int wedge_side(const EditableFaces& m, const Face& q, double ratio) {
   return side_length(m, q, s) < ratio * side_length(m, q, (s + 2) % 4) ? s : -1;
 }
 
-// Every face around from renamed to `to` (undo with the faces as they were).
-void merge_node(EditableFaces& m, Index from, Index to) {
-  const std::set<Index> faces_of(m.around(from).begin(), m.around(from).end());
-  for (Index g : faces_of) m.set_face(g, renamed(m.face(g), from, to));
-}
-
 }  // namespace
 
 std::size_t collapse_wedges(std::span<const NodeSlot> slots,
@@ -77,7 +71,7 @@ std::size_t collapse_wedges(std::span<const NodeSlot> slots,
     Index best_from = kInvalid;
     for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
       if (merged[from] || !freedom.may_merge(from, to, slots)) continue;
-      merge_node(m, from, to);
+      m.merge_node(from, to);
       if (m.manifold(core)) {
         const EditableFaces::Score sc = m.score(core, judged);
         if (sc.better_than(best)) {
@@ -90,7 +84,7 @@ std::size_t collapse_wedges(std::span<const NodeSlot> slots,
 
     // apply.
     if (best_from == kInvalid) continue;
-    merge_node(m, best_from, best_from == a ? b : a);
+    m.merge_node(best_from, best_from == a ? b : a);
     merged[best_from] = 1;
     ++collapsed;
   }

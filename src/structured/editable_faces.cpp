@@ -146,6 +146,12 @@ Face renamed(const Face& h, Index from, Index to) {
   return {kInvalid, kInvalid, kInvalid, kInvalid};
 }
 
+void EditableFaces::merge_node(Index from, Index to) {
+  // A copy: set_face changes around(from).
+  const std::set<Index> faces_of(around(from).begin(), around(from).end());
+  for (Index g : faces_of) set_face(g, renamed(face(g), from, to));
+}
+
 bool NodeFreedom::may_merge(Index i, Index b, std::span<const NodeSlot> slots) const {
   if (on_knuckle[i]) return false;
   if (movable[i]) return true;

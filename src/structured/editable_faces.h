@@ -74,6 +74,9 @@ class EditableFaces {
   }
 
   void set_face(Index f, const Face& h);
+  // Every face around `from` with that corner renamed `to` (renamed(); undo by setting the faces
+  // back as they were).
+  void merge_node(Index from, Index to);
   void set_position(Index v, const Vec3d& p) { positions_[v] = p; }
 
  private:

@@ -237,9 +237,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
       std::map<Index, Face> was;
       for (Index g : scored) was[g] = m.face(g);
       for (const auto& [i, bf] : inner) {
-        if (!mergeable(i, bf.first)) continue;
-        const std::set<Index> faces_of(m.around(i).begin(), m.around(i).end());
-        for (Index g : faces_of) m.set_face(g, renamed(m.face(g), i, bf.first));
+        if (mergeable(i, bf.first)) m.merge_node(i, bf.first);
       }
       EditableFaces::Score s1{std::numeric_limits<std::size_t>::max(), 0};
       // A removal that folds the surface over (a merged node's panels lying across the next
@@ -276,8 +274,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
       for (const auto& [i, bf] : inner)
         if (mergeable(i, bf.first)) to_merge.push_back(i);
       for (Index i : to_merge) {
-        const std::set<Index> faces_of(m.around(i).begin(), m.around(i).end());
-        for (Index g : faces_of) m.set_face(g, renamed(m.face(g), i, inner[i].first));
+        m.merge_node(i, inner[i].first);
         merged[i] = 1;
       }
       counts.removed += run.size();

@@ -42,8 +42,7 @@ std::size_t weld_coincident_nodes(std::vector<std::array<Index, 2>>& knuckle_edg
       core.insert(m.around(keep).begin(), m.around(keep).end());
       std::vector<std::pair<Index, Face>> was;
       for (Index g : core) was.emplace_back(g, m.face(g));
-      const std::set<Index> faces_of(m.around(from).begin(), m.around(from).end());
-      for (Index g : faces_of) m.set_face(g, renamed(m.face(g), from, keep));
+      m.merge_node(from, keep);
       if (!m.manifold(core)) {
         for (const auto& [g, h] : was) m.set_face(g, h);
         continue;

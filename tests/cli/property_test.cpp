@@ -43,6 +43,12 @@ struct Case {
   bool overlap = false;  // patches overlap: the file's exact volume counts the overlaps twice
 };
 
+// HM_PROPERTY_WIDE: gaps up to issue 4's 1e-3 L and trims (see random_case).
+bool wide_mode() {
+  static const bool wide = std::getenv("HM_PROPERTY_WIDE") != nullptr;
+  return wide;
+}
+
 // Proportions within what ships have (L/B 4..12, B/T 2..4, freeboard up to 60% of T), 1 to 16
 // patches, half or full hull, and the import issue's defects (gaps, repeated control points,
 // flipped patches), each on or off at random.
@@ -94,7 +100,7 @@ Case random_case(std::uint64_t seed) {
   c.panels = 300 + 100 * pick(10);
   // HM_PROPERTY_WIDE: gaps up to issue 4's 1e-3 L and a trim of up to 1 degree either way, drawn
   // after everything else so that a seed's other draws stay what they were.
-  static const bool wide = std::getenv("HM_PROPERTY_WIDE") != nullptr;
+  const bool wide = wide_mode();
   const double gap_width = wide ? uniform(1e-4, 1e-3) * length : 1e-4 * length;
   if (wide && pick(2) == 0) {
     // Within what keeps the deck edge dry at both ends (the generated hulls have no deck: seed
@@ -117,9 +123,9 @@ void check_case(const Case& c, const fs::path& dir) {
   std::ostringstream trim;
   if (c.trim != 0) trim << " --trim " << c.trim;
   const std::string replay = "replay with HM_PROPERTY_SEED=" + std::to_string(c.seed) +
-                             (std::getenv("HM_PROPERTY_WIDE") ? " HM_PROPERTY_WIDE=1" : "") +
-                             " (generate " + c.generate + ", draft " + draft.str() + trim.str() +
-                             ", " + std::to_string(c.panels) + " panels)";
+                             (wide_mode() ? " HM_PROPERTY_WIDE=1" : "") + " (generate " +
+                             c.generate + ", draft " + draft.str() + trim.str() + ", " +
+                             std::to_string(c.panels) + " panels)";
   SCOPED_TRACE(replay);
   const fs::path igs = dir / ("hull_" + std::to_string(c.seed) + ".igs");
   const auto g = run_hullmesh("-q generate " + c.generate + " -o " + q(igs));
