@@ -50,14 +50,15 @@ Index add_node(const Vec3d& p, Index u, SurfaceMesh& mesh, std::vector<NodeSlot>
 // corner, resampled, are zipped against each other, so that every triangle has a corner off the
 // centre plane and one off the waterplane: a fan from either end could lay panels flat in one of
 // the planes.
-// top_z: the surface's highest z, the waterplane where it was cut there; a point within plane_tol
-// (m) below it is on it (a cut in the file's frame rounds). Returns false, and adds nothing, when
+// top_z: the surface's greatest height along `up` (the waterplane's unit normal), the waterplane
+// where it was cut there; a point within plane_tol (m) below it is on it (a cut in the file's
+// frame rounds). Returns false, and adds nothing, when
 // the end off the centre plane is not on it: the edge cuts no corner of the waterline.
 // centre_tol (m): a point this close to y = 0 is in the centre plane.
-bool fill_cut_corner(const std::vector<Vec3d>& path, Index u, Index w, double top_z,
-                     double plane_tol, double centre_tol, const Metric& metric, SurfaceMesh& mesh,
-                     std::vector<NodeSlot>& slots) {
-  const auto on_plane = [&](const Vec3d& p) { return top_z - p.z <= plane_tol; };
+bool fill_cut_corner(const std::vector<Vec3d>& path, Index u, Index w, const Vec3d& up,
+                     double top_z, double plane_tol, double centre_tol, const Metric& metric,
+                     SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
+  const auto on_plane = [&](const Vec3d& p) { return top_z - dot(up, p) <= plane_tol; };
   const bool u_central = std::abs(mesh.positions[u].y) <= centre_tol;
   std::vector<Vec3d> from_central(path.begin(), path.end());
   if (!u_central) std::reverse(from_central.begin(), from_central.end());
@@ -71,8 +72,9 @@ bool fill_cut_corner(const std::vector<Vec3d>& path, Index u, Index w, double to
     // of a fine triangle: the property test's seeds 1209 at a transom and 1295 at a stem): the
     // corner is put back below the point where the path reaches the waterplane, the way the
     // waterline runs across a transom or round a fine stem.
+    const double x = from_central[c].x;
     from_central.insert(from_central.begin() + static_cast<std::ptrdiff_t>(c),
-                        Vec3d{from_central[c].x, 0.0, top_z});
+                        Vec3d{x, 0.0, (top_z - up.x * x) / up.z});
   }
   const std::vector<Vec3d> central_run(from_central.begin(),
                                        from_central.begin() + static_cast<std::ptrdiff_t>(c + 1));
@@ -118,8 +120,8 @@ bool fill_cut_corner(const std::vector<Vec3d>& path, Index u, Index w, double to
 }  // namespace
 
 GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj,
-                            std::span<const std::uint8_t> row_end, const Metric& metric,
-                            SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
+                            std::span<const std::uint8_t> row_end, const Vec3d& up,
+                            const Metric& metric, SurfaceMesh& mesh, std::vector<NodeSlot>& slots) {
   GapCounts counts;
   const EdgeAdjacency panels = build_edge_adjacency(mesh.faces, mesh.vertex_count());
   const double tol = 0.25 * std::min({metric.size.x, metric.size.y, metric.size.z});
@@ -127,7 +129,7 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
   double top_z = -std::numeric_limits<double>::infinity();
   BBox3d box;
   for (const Vec3d& p : surface.positions) {
-    top_z = std::max(top_z, p.z);
+    top_z = std::max(top_z, dot(up, p));
     box.add(p);
   }
   // A node counts as in the centre plane within rounding of y = 0: a file may draw its
@@ -146,7 +148,7 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
     const Vec3d pu = mesh.positions[u], pw = mesh.positions[w];
     // One end on the centre plane and the other off it, on another plane (the waterline): the
     // boundary turns a corner between them, however little the path strays.
-    const bool turns = pu.z != pw.z && central(pu) != central(pw);
+    const bool turns = dot(up, pu) != dot(up, pw) && central(pu) != central(pw);
     const bool row_ends = u < row_end.size() && w < row_end.size() && row_end[u] && row_end[w];
     // Any other panel edge (an end cap's) is a gap only where it cuts such a corner, both ends
     // on the boundary itself: a transom immersed a few hundredths of a panel, whose corner below
@@ -156,7 +158,7 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
       const std::vector<Vec3d> best =
           shortest_border_path(surface, adj, pu, pw, metric, kOnBorder * tol);
       if (best.size() < 3 || stray(best, pu, pw, metric) < kMinStray) continue;
-      if (fill_cut_corner(best, u, w, top_z, kOnBorder * tol, centre_tol, metric, mesh, slots))
+      if (fill_cut_corner(best, u, w, up, top_z, kOnBorder * tol, centre_tol, metric, mesh, slots))
         ++counts.gaps;
       continue;
     }
@@ -187,10 +189,10 @@ GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj
     // through the corner is kept: where a concave stem runs aft of the last station, the
     // zip's nodes on the stem would cross the rows' panels (seed 1257).
     const bool has_corner = std::any_of(inner.begin(), inner.end(), [&](const Vec3d& p) {
-      return central(p) && top_z - p.z <= kOnBorder * tol;
+      return central(p) && top_z - dot(up, p) <= kOnBorder * tol;
     });
     if (turns && !has_corner &&
-        fill_cut_corner(best, u, w, top_z, kOnBorder * tol, centre_tol, metric, mesh, slots)) {
+        fill_cut_corner(best, u, w, up, top_z, kOnBorder * tol, centre_tol, metric, mesh, slots)) {
       ++counts.gaps;
       continue;
     }

@@ -20,10 +20,10 @@ struct GapCounts {
   std::size_t gaps = 0, triangles = 0;
 };
 
-// row_end: per vertex of mesh, 1 for a row curve's end node. Appends triangles (and fixed boundary
-// nodes) to mesh and slots.
+// row_end: per vertex of mesh, 1 for a row curve's end node. up: the waterplane's unit normal.
+// Appends triangles (and fixed boundary nodes) to mesh and slots.
 GapCounts close_border_gaps(const SurfaceMesh& surface, const EdgeAdjacency& adj,
-                            std::span<const std::uint8_t> row_end, const Metric& metric,
-                            SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
+                            std::span<const std::uint8_t> row_end, const Vec3d& up,
+                            const Metric& metric, SurfaceMesh& mesh, std::vector<NodeSlot>& slots);
 
 }  // namespace hm::structured

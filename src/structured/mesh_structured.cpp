@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <map>
 
 #include "core/error.h"
@@ -13,6 +15,38 @@
 #include "structured/structured_steps.h"
 
 namespace hm {
+namespace structured {
+
+// Vertices no face uses (nodes the border repairs merged away) leave the arrays; the faces and
+// the knuckle edges are renumbered (vert_old2new).
+void drop_unused_vertices(StructuredMesh& out) {
+  SurfaceMesh& mesh = out.mesh;
+  const std::size_t nv = mesh.vertex_count();
+  std::vector<std::uint8_t> used(nv, 0);
+  for (const Face& f : mesh.faces)
+    for (int c = 0; c < corner_count(f); ++c) used[f[c]] = 1;
+  for (const auto& e : out.knuckle_edges) used[e[0]] = used[e[1]] = 1;
+  if (std::all_of(used.begin(), used.end(), [](std::uint8_t u) { return u != 0; })) return;
+  std::vector<Index> vert_old2new(nv, kInvalid);
+  Index next = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    vert_old2new[v] = next;
+    mesh.positions[next] = mesh.positions[v];
+    if (!mesh.vertex_patch.empty()) mesh.vertex_patch[next] = mesh.vertex_patch[v];
+    if (!mesh.vertex_uv.empty()) mesh.vertex_uv[next] = mesh.vertex_uv[v];
+    ++next;
+  }
+  mesh.positions.resize(next);
+  if (!mesh.vertex_patch.empty()) mesh.vertex_patch.resize(next);
+  if (!mesh.vertex_uv.empty()) mesh.vertex_uv.resize(next);
+  for (Face& f : mesh.faces)
+    for (int c = 0; c < corner_count(f); ++c) f[c] = vert_old2new[f[c]];
+  for (auto& e : out.knuckle_edges) e = {vert_old2new[e[0]], vert_old2new[e[1]]};
+}
+
+}  // namespace structured
+
 namespace {
 
 using namespace structured;
@@ -45,14 +79,17 @@ Metric make_metric(const SurfaceMesh& surface, const StructuredOptions& o) {
   return m;
 }
 
-// F = sum of z n_z A over the faces: the volume under the surface, signed by its orientation.
-// The panels and the surface they cover share it (and their open borders), so its sign compares
-// their orientations.
-double orientation_measure(const SurfaceMesh& m) {
+// F = sum of h n_h A over the faces, h the height along `up` above `top`: the volume under the
+// surface, signed by its orientation. The panels and the surface they cover share it (and their
+// open borders), so its sign compares their orientations. Heights from the surface's top (the
+// waterplane where it was cut), so that a lid across the open top adds nothing: measured from
+// the keel of a side meshed in the ship's frame, the lid's share nearly cancelled the rest.
+double orientation_measure(const SurfaceMesh& m, const Vec3d& up, double top) {
   double f = 0;
   for (const Face& face : m.faces) {
     const Vec3d n = face_normal(m.positions, face);
-    f += face_centroid(m.positions, face).z * n.z * face_area(m.positions, face);
+    f += (dot(up, face_centroid(m.positions, face)) - top) * dot(up, n) *
+         face_area(m.positions, face);
   }
   return f;
 }
@@ -62,7 +99,7 @@ double orientation_measure(const SurfaceMesh& m) {
 void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, const BBox3d& box,
                 const FeatureSet& features, std::span<const Row> rows,
                 std::span<const RowNodes> nodes, std::span<const StripFaces> strips,
-                const Metric& metric, const ZipOptions& zo, NodeLayout& layout,
+                const Vec3d& up, const Metric& metric, const ZipOptions& zo, NodeLayout& layout,
                 StructuredMesh& out) {
   SurfaceMesh& mesh = out.mesh;
   StructuredReport& rep = out.report;
@@ -93,7 +130,7 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
   rep.rows_unmatched -= joined.closed.size() + joined.ends_closed;
   rep.rows_joined = joined.closed.size();
   rep.curve_caps = joined.caps;
-  const GapCounts gaps = close_border_gaps(surface, adjacency, row_end, metric, mesh, slots);
+  const GapCounts gaps = close_border_gaps(surface, adjacency, row_end, up, metric, mesh, slots);
   rep.border_gaps = gaps.gaps;
   rep.cap_triangles += gaps.triangles;
   if (mesh.faces.size() > before_caps) {
@@ -106,34 +143,6 @@ void close_ends(const SurfaceMesh& surface, const EdgeAdjacency& adjacency, cons
     mesh.face_block.resize(mesh.faces.size(), br.id);
     rep.blocks.push_back(br);
   }
-}
-
-// Vertices no face uses (nodes the border repairs merged away) leave the arrays; the faces and
-// the knuckle edges are renumbered (vert_old2new).
-void drop_unused_vertices(StructuredMesh& out) {
-  SurfaceMesh& mesh = out.mesh;
-  const std::size_t nv = mesh.vertex_count();
-  std::vector<std::uint8_t> used(nv, 0);
-  for (const Face& f : mesh.faces)
-    for (int c = 0; c < corner_count(f); ++c) used[f[c]] = 1;
-  for (const auto& e : out.knuckle_edges) used[e[0]] = used[e[1]] = 1;
-  if (std::all_of(used.begin(), used.end(), [](std::uint8_t u) { return u != 0; })) return;
-  std::vector<Index> vert_old2new(nv, kInvalid);
-  Index next = 0;
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (!used[v]) continue;
-    vert_old2new[v] = next;
-    mesh.positions[next] = mesh.positions[v];
-    if (!mesh.vertex_patch.empty()) mesh.vertex_patch[next] = mesh.vertex_patch[v];
-    if (!mesh.vertex_uv.empty()) mesh.vertex_uv[next] = mesh.vertex_uv[v];
-    ++next;
-  }
-  mesh.positions.resize(next);
-  if (!mesh.vertex_patch.empty()) mesh.vertex_patch.resize(next);
-  if (!mesh.vertex_uv.empty()) mesh.vertex_uv.resize(next);
-  for (Face& f : mesh.faces)
-    for (int c = 0; c < corner_count(f); ++c) f[c] = vert_old2new[f[c]];
-  for (auto& e : out.knuckle_edges) e = {vert_old2new[e[0]], vert_old2new[e[1]]};
 }
 
 // One meshing pass at the given sizes: plan -> rows -> grow -> zip -> caps -> relax -> refine ->
@@ -172,8 +181,8 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   rep.seconds_grow = seconds_since(t);
   commit_strips(rows, strips, out);
 
-  close_ends(surface, adjacency, query.bbox(), features, rows, nodes, strips, metric, zo, layout,
-             out);
+  close_ends(surface, adjacency, query.bbox(), features, rows, nodes, strips,
+             options.waterplane_normal, metric, zo, layout, out);
 
   t = clock::now();
   relax_nodes(rows, slots, mesh.faces, mesh.positions, options.relax_passes);
@@ -187,8 +196,9 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
     rep.border_extended = b.extended;
     rep.border_split = b.split;
   }
-  rep.edge_snaps = snap_to_edge_curves(patches, surface, features, rows, slots, out.knuckle_edges,
-                                       query.length_scale(), metric, mesh);
+  rep.edge_snaps =
+      snap_to_edge_curves(patches, surface, features, rows, slots, out.knuckle_edges,
+                          query.length_scale(), options.waterplane_normal, metric, mesh);
   rep.nodes_welded = weld_coincident_nodes(out.knuckle_edges, mesh);
   if (options.repair_border_panels) {
     rep.wedges_collapsed =
@@ -208,7 +218,10 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   mesh.face_patch.resize(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     mesh.face_patch[f] = mesh.vertex_patch[mesh.faces[f][0]];
-  if ((orientation_measure(mesh) > 0) != (orientation_measure(surface) > 0)) {
+  const Vec3d& up = options.waterplane_normal;
+  double top = -std::numeric_limits<double>::infinity();
+  for (const Vec3d& p : surface.positions) top = std::max(top, dot(up, p));
+  if ((orientation_measure(mesh, up, top) > 0) != (orientation_measure(surface, up, top) > 0)) {
     for (Face& f : mesh.faces) {
       if (is_triangle(f))
         std::swap(f[1], f[2]);
@@ -222,11 +235,9 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
 
 }  // namespace
 
-StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
-                               const EdgeAdjacency& adjacency, const HullQuery& query,
-                               const FeatureSet& features, const StructuredOptions& options) {
-  Metric metric = make_metric(surface, options);
-  StructuredMesh out = mesh_with(patches, surface, adjacency, query, features, options, metric);
+StructuredMesh mesh_to_count(const std::function<StructuredMesh(const Vec3d&)>& mesh_at, Vec3d size,
+                             const StructuredOptions& options) {
+  StructuredMesh out = mesh_at(size);
   const std::size_t first = out.mesh.face_count();
   const bool from_count = !(options.size.x > 0 && options.size.y > 0 && options.size.z > 0);
   std::size_t passes = 1;
@@ -234,9 +245,9 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
     const double ratio =
         static_cast<double>(out.mesh.face_count()) / static_cast<double>(options.target_panels);
     if (std::abs(ratio - 1) <= kMatchTolerance || !(ratio > 0)) break;
-    metric.size = metric.size * std::sqrt(ratio);
+    size = size * std::sqrt(ratio);
     const StructuredReport before = out.report;
-    out = mesh_with(patches, surface, adjacency, query, features, options, metric);
+    out = mesh_at(size);
     // The stage times are of every pass.
     out.report.seconds_plan += before.seconds_plan;
     out.report.seconds_rows += before.seconds_rows;
@@ -247,6 +258,25 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
   out.report.size_passes = passes;
   out.report.first_pass_faces = first;
   return out;
+}
+
+StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
+                               const EdgeAdjacency& adjacency, const HullQuery& query,
+                               const FeatureSet& features, const StructuredOptions& options) {
+  Metric metric = make_metric(surface, options);
+  return mesh_to_count(
+      [&](const Vec3d& size) {
+        metric.size = size;
+        return mesh_with(patches, surface, adjacency, query, features, options, metric);
+      },
+      metric.size, options);
+}
+
+StationList plan_structured_stations(const SurfaceMesh& surface, const HullQuery& query,
+                                     const FeatureSet& features, const StructuredOptions& options) {
+  const StationPlan plan =
+      plan_stations(query, features, surface, make_metric(surface, options), options);
+  return {plan.x, plan.border};
 }
 
 }  // namespace hm

@@ -96,6 +96,23 @@ void add_cut(std::vector<double>& cuts, double x, double gap) {
   cuts.push_back(x);
 }
 
+// The caller's stations on this surface: those more than kMinStepShare of a panel inside its x
+// ends; the first and last kept become border stations (the caps take what lies beyond).
+StationPlan given_stations(const BBox3d& box, double hx, const StructuredOptions& options) {
+  StationPlan plan;
+  const double lo = box.lo.x + kMinStepShare * hx, hi = box.hi.x - kMinStepShare * hx;
+  for (std::size_t k = 0; k < options.station_x.size(); ++k) {
+    const double x = options.station_x[k];
+    if (!(x > lo && x < hi)) continue;
+    plan.x.push_back(x);
+    plan.border.push_back(k < options.station_border.size() ? options.station_border[k] : 0);
+  }
+  if (plan.x.size() < 2) throw GeometryError("structured: no given station cuts the hull");
+  plan.border.front() = plan.border.back() = 1;
+  for (std::size_t k = 1; k + 1 < plan.x.size(); ++k) plan.cuts += plan.border[k];
+  return plan;
+}
+
 }  // namespace
 
 StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
@@ -105,6 +122,7 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
   const double length = box.hi.x - box.lo.x;
   if (!(length > 0)) throw GeometryError("structured: the hull has no length along x");
   const double hx = metric.size.x;
+  if (!options.station_x.empty()) return given_stations(box, hx, options);
   const std::size_t count =
       std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(4 * length / hx)), 64, 4000);
   const std::vector<Sample> samples = sample_sections(query, box.lo.x, box.hi.x, count);

@@ -63,10 +63,10 @@ void curve_at(const NurbsSurface& s, const EdgeCurve& c, double t, Vec3d& p, Vec
 enum class Keep : std::uint8_t { kNearest, kStation, kWaterline };
 
 // Newton on the curve parameter, from t0, kept inside [lo, hi]: nearest point to q (kNearest),
-// or the crossing with x = q.x (kStation) or z = q.z (kWaterline). Empty when it does not
-// converge to `tol` (m) in 30 steps.
+// or the crossing with x = q.x (kStation) or with the plane of q's height along `up` (kWaterline).
+// Empty when it does not converge to `tol` (m) in 30 steps.
 std::optional<double> solve(const NurbsSurface& s, const EdgeCurve& c, const Vec3d& q, Keep keep,
-                            double t0, double lo, double hi, double tol) {
+                            const Vec3d& up, double t0, double lo, double hi, double tol) {
   double t = std::clamp(t0, lo, hi);
   for (int it = 0; it < 30; ++it) {
     Vec3d p, dp;
@@ -78,8 +78,8 @@ std::optional<double> solve(const NurbsSurface& s, const EdgeCurve& c, const Vec
       df = squared_norm(dp);
       if (std::abs(f) <= tol * std::sqrt(df)) return t;
     } else {
-      f = keep == Keep::kStation ? p.x - q.x : p.z - q.z;
-      df = keep == Keep::kStation ? dp.x : dp.z;
+      f = keep == Keep::kStation ? p.x - q.x : dot(up, p) - dot(up, q);
+      df = keep == Keep::kStation ? dp.x : dot(up, dp);
       if (std::abs(f) <= tol) return t;
     }
     if (!(std::abs(df) > 0)) return std::nullopt;
@@ -125,7 +125,7 @@ std::optional<CurveSegment> segment_on_edge(std::span<const Patch> patches,
       } else {
         const double lo = c.u_fixed ? s.v0 : s.u0, hi = c.u_fixed ? s.v1 : s.u1;
         const std::optional<double> t =
-            solve(s, c, surface.positions[vo], Keep::kNearest, te, lo, hi, tol);
+            solve(s, c, surface.positions[vo], Keep::kNearest, Vec3d{0, 0, 1}, te, lo, hi, tol);
         if (!t) continue;
         Vec3d q, dq;
         curve_at(s, c, *t, q, dq);
@@ -153,7 +153,8 @@ std::size_t snap_to_edge_curves(std::span<const Patch> patches, const SurfaceMes
                                 const FeatureSet& features, std::span<const Row> rows,
                                 std::span<const NodeSlot> slots,
                                 std::span<const std::array<Index, 2>> knuckle_edges,
-                                double length_scale, const Metric& metric, SurfaceMesh& mesh) {
+                                double length_scale, const Vec3d& up, const Metric& metric,
+                                SurfaceMesh& mesh) {
   // collect: the fine feature segments on a domain edge (waterline runs are cut lines, on no
   // patch edge), sorted by their low x for the slab search below.
   std::vector<CurveSegment> segs;
@@ -166,12 +167,12 @@ std::size_t snap_to_edge_curves(std::span<const Patch> patches, const SurfaceMes
         segs.push_back(*s);
     }
   };
-  // The waterline's z: the median of its runs' vertices (the cut put almost all of them on the
-  // plane exactly; a run's end at the stem may lie a little off it).
+  // The waterline's height along `up`: the median of its runs' vertices (the cut put almost all of
+  // them on the plane exactly; a run's end at the stem may lie a little off it).
   std::vector<double> waterline_zs;
   for (const BoundaryRun& r : features.boundaries) {
     if (r.kind == BoundaryKind::kWaterline) {
-      for (Index v : r.vertices) waterline_zs.push_back(surface.positions[v].z);
+      for (Index v : r.vertices) waterline_zs.push_back(dot(up, surface.positions[v]));
       continue;
     }
     add_line(r);
@@ -229,7 +230,8 @@ std::size_t snap_to_edge_curves(std::span<const Patch> patches, const SurfaceMes
     // border is the exact place.
     const bool on_station = v < slots.size() && slots[v].row != kInvalid &&
                             std::abs(q.x - rows[slots[v].row].x) <= on_plane;
-    const bool on_waterline = std::isfinite(waterline_z) && std::abs(q.z - waterline_z) <= on_plane;
+    const bool on_waterline =
+        std::isfinite(waterline_z) && std::abs(dot(up, q) - waterline_z) <= on_plane;
     const Keep keep = on_waterline ? Keep::kWaterline
                       : on_station ? Keep::kStation
                                    : Keep::kNearest;
@@ -240,19 +242,25 @@ std::size_t snap_to_edge_curves(std::span<const Patch> patches, const SurfaceMes
     const double lo = std::max(dlo, std::min(best->ta, best->tb) - span);
     const double hi = std::min(dhi, std::max(best->ta, best->tb) + span);
     const double t0 = best->ta + (best->tb - best->ta) * best_f;
-    std::optional<double> t = solve(s, best->curve, q, keep, t0, lo, hi, tol);
+    std::optional<double> t = solve(s, best->curve, q, keep, up, t0, lo, hi, tol);
     // No crossing of the plane inside the window: a node at a patch corner, where the curve
     // ends before the plane. The nearest point of the curve keeps it within the chord error.
-    if (!t && keep == Keep::kStation) t = solve(s, best->curve, q, Keep::kNearest, t0, lo, hi, tol);
+    if (!t && keep == Keep::kStation)
+      t = solve(s, best->curve, q, Keep::kNearest, up, t0, lo, hi, tol);
     if (!t) return;
     Vec3d p, dp;
     curve_at(s, best->curve, *t, p, dp);
     // The plane kept exactly (the crossing is solved to 1e-12 L): other steps test it with ==.
-    if (keep == Keep::kWaterline) p.z = waterline_z;
+    if (keep == Keep::kWaterline) {
+      if (up.x == 0 && up.y == 0)
+        p.z = waterline_z;
+      else
+        p = p + up * (waterline_z - dot(up, p));
+    }
     if (keep == Keep::kStation && std::abs(p.x - q.x) <= tol) p.x = q.x;
     if (!(norm(p - q) <= reach)) return;
     // A node below the waterline stays below it (the curve may rise through the plane nearby).
-    if (std::isfinite(waterline_z) && keep != Keep::kWaterline && p.z > waterline_z) return;
+    if (std::isfinite(waterline_z) && keep != Keep::kWaterline && dot(up, p) > waterline_z) return;
     // A node in the centre plane (put there exactly by the cut or the half hull's border) stays
     // within the centre plane's tolerance (kPlaneTolerance), which puts it back: the curve matched
     // may be a knuckle that leaves the plane. Property seed 4424: the corner of the centre plane

@@ -13,7 +13,11 @@
 // the unstructured path prepares it (waterplane and centre-plane cuts applied).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -67,6 +71,15 @@ struct StructuredOptions {
   // until the count is within kMatchTolerance of the target (at most kMatchPasses in all). The
   // rows add panels where they turn, so one pass overshoots by 0-40%.
   bool match_panels = false;
+  // The waterplane's unit normal in the meshing frame, up out of the water: z, but for a heeled
+  // hull's side, meshed in the ship's own frame (mesh_sides), where the waterplane leans.
+  Vec3d waterplane_normal{0, 0, 1};
+  // Stations given instead of planned (ascending x, m; station_border 1 at a cut station): the
+  // two sides of a heeled hull are meshed apart on the whole hull's plan, so that their nodes on
+  // the centre plane mostly coincide. Stations within a fifth of a panel of this surface's ends,
+  // or beyond them, are dropped; the first and last kept are its end stations.
+  std::vector<double> station_x;
+  std::vector<std::uint8_t> station_border;
 };
 
 // What one block became.
@@ -116,5 +129,50 @@ struct StructuredMesh {
 StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh& surface,
                                const EdgeAdjacency& adjacency, const HullQuery& query,
                                const FeatureSet& features, const StructuredOptions& options);
+
+// --match-panels for a mesher of the sizes: mesh_at(size), then again with the sizes scaled by
+// sqrt(count / target) until the count is within 3% of options.target_panels (three passes at
+// most), when options.match_panels is set and options.size is not. The report counts the passes
+// and the first pass's panels; its stage times are of every pass.
+StructuredMesh mesh_to_count(const std::function<StructuredMesh(const Vec3d&)>& mesh_at, Vec3d size,
+                             const StructuredOptions& options);
+
+// The stations mesh_structured would plan for this surface (x ascending, m) and which are border
+// stations (cuts and ends), for StructuredOptions::station_x and station_border.
+struct StationList {
+  std::vector<double> x;
+  std::vector<std::uint8_t> border;
+};
+StationList plan_structured_stations(const SurfaceMesh& surface, const HullQuery& query,
+                                     const FeatureSet& features, const StructuredOptions& options);
+
+// Counts of join_sides.
+struct SideJoin {
+  std::size_t seam_nodes = 0;    // nodes on the centre plane's seam, both sides, before the join
+  std::size_t welded = 0;        // pairs of nodes, one of each side, made one
+  std::size_t inserted = 0;      // nodes of one side put into a seam edge of the other
+  std::size_t back_to_back = 0;  // pairs of panels on the same corners, dropped
+  std::size_t holes_filled = 0;  // small holes left in the plane between the sides, filled
+};
+
+// Where join_sides looks for the seam: the centre plane y = 0, within centre_tol (m), and the
+// waterplane dot(up, p) = waterline, within waterline_tol (m; NaN waterline: none).
+struct SeamPlanes {
+  double centre_tol = 0;
+  Vec3d up{0, 0, 1};
+  double waterline = std::numeric_limits<double>::quiet_NaN();
+  double waterline_tol = 0;
+};
+
+// The two sides of a hull meshed apart, in a frame whose centre plane is y = 0 (a heeled hull's
+// port and starboard sides, meshed in the ship's own frame), made one mesh: where both sides'
+// open borders run along the plane (edges on the waterline too excepted) a node of one side within
+// a quarter of the shorter seam edge beside it of a node of the other is welded to it (the port
+// node stays), and any other node goes into the edge of the other side it lies on, whose panel is
+// split (a quad into a quad and triangles where its other sides allow, else into triangles by their
+// smallest angle). Faces keep their patch; starboard's blocks follow port's, with their names
+// and counts. Knuckle edges follow their nodes.
+StructuredMesh join_sides(StructuredMesh port, StructuredMesh starboard, const SeamPlanes& planes,
+                          SideJoin* counts = nullptr);
 
 }  // namespace hm

@@ -194,12 +194,18 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
 // knuckle edge that lies on a fine boundary or knuckle segment running along an edge of a
 // patch's parameter domain moves onto that NURBS edge curve (a row node where the curve crosses
 // its station plane, a waterline node where it crosses the waterplane, any other node at the
-// nearest point). Returns the number of nodes moved. Parallel over nodes; deterministic.
+// nearest point). up: the waterplane's unit normal. Returns the number of nodes moved. Parallel
+// over nodes; deterministic.
 std::size_t snap_to_edge_curves(std::span<const Patch> patches, const SurfaceMesh& surface,
                                 const FeatureSet& features, std::span<const Row> rows,
                                 std::span<const NodeSlot> slots,
                                 std::span<const std::array<Index, 2>> knuckle_edges,
-                                double length_scale, const Metric& metric, SurfaceMesh& mesh);
+                                double length_scale, const Vec3d& up, const Metric& metric,
+                                SurfaceMesh& mesh);
+
+// Vertices no face or knuckle edge uses leave the arrays; faces and knuckle edges are renumbered
+// (vert_old2new), in order.
+void drop_unused_vertices(StructuredMesh& out);
 
 // --- strips ------------------------------------------------------------------------------
 struct StripFaces {

@@ -159,7 +159,8 @@ EdgeVerdict judge_edge(const Context& c, Index e) {
   const Vec3d& p1 = c.mesh.positions[me.v1];
   const double tol = kPlaneTolerance * c.length;
   const double wl = c.options.waterline_z;
-  if (std::isfinite(wl) && std::abs(p0.z - wl) <= tol && std::abs(p1.z - wl) <= tol) {
+  const Vec3d& up = c.options.waterplane_normal;
+  if (std::isfinite(wl) && std::abs(dot(up, p0) - wl) <= tol && std::abs(dot(up, p1) - wl) <= tol) {
     return {BoundaryKind::kWaterline, false};
   }
   if (std::abs(p0.y) <= tol && std::abs(p1.y) <= tol) return {BoundaryKind::kCentrePlane, false};

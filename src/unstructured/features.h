@@ -42,8 +42,11 @@ struct FeatureOptions {
   bool confirm_on_nurbs = true;       // keep a candidate only if the NURBS normals jump there too
   std::vector<KnuckleHint> add;       // edges forced to be knuckles (no NURBS check)
   std::vector<KnuckleHint> suppress;  // edges never knuckles (wins over add)
-  // z of a waterline cut (boundary edges on it are kWaterline); NaN: none.
+  // The waterline cut: the plane dot(waterplane_normal, p) = waterline_z (boundary edges on it
+  // are kWaterline); NaN: none. The normal is a unit vector, up out of the water: z but for a
+  // heeled hull's side, meshed in the ship's own frame, where the waterplane leans.
   double waterline_z = std::numeric_limits<double>::quiet_NaN();
+  Vec3d waterplane_normal{0, 0, 1};
   // The surface goes on above the waterline (it was split at waterline_z, not cut): its interior
   // edges on the plane are knuckles whatever the angle or the hints say, so that every mesher
   // ends its panels on the waterline.

@@ -434,14 +434,15 @@ KnuckleEdges find_knuckles(const SurfaceMesh& mesh, const EdgeAdjacency& adjacen
   const std::vector<SmoothPieces> pieces =
       confirm ? smooth_pieces(patches) : std::vector<SmoothPieces>{};
 
-  // The cut sets its vertices' z to the plane's value exactly; 1e-9 L only absorbs a file whose
-  // own vertices lie there.
+  // The cut puts its vertices on the plane exactly (to rounding in a leaning frame); 1e-9 L only
+  // absorbs a file whose own vertices lie there.
   const double wl = options.waterline_z, wl_tol = 1e-9 * length;
   auto on_waterline = [&](Index e) {
     if (!options.waterline_inside || std::isnan(wl)) return false;
     const MeshEdge& me = adjacency.edges[e];
-    return std::abs(mesh.positions[me.v0].z - wl) <= wl_tol &&
-           std::abs(mesh.positions[me.v1].z - wl) <= wl_tol;
+    const Vec3d& up = options.waterplane_normal;
+    return std::abs(dot(up, mesh.positions[me.v0]) - wl) <= wl_tol &&
+           std::abs(dot(up, mesh.positions[me.v1]) - wl) <= wl_tol;
   };
   std::vector<std::uint8_t> flags(adjacency.edges.size(), 0);
   parallel_for(0, adjacency.edges.size(), [&](std::size_t i) {
