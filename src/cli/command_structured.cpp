@@ -15,6 +15,7 @@
 #include "cli/knuckle_hints.h"
 #include "cli/lid_output.h"
 #include "cli/load_hull.h"
+#include "cli/mesh_sides.h"
 #include "cli/prepare_hull.h"
 #include "cli/run_record.h"
 #include "cli/validate_stage.h"
@@ -66,7 +67,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   pa.floating = c.floating;
   // A full hull upright is meshed as its port half and mirrored (unless --symmetry half keeps
   // the half): the panels are then symmetric, and each station is one curve from keel to
-  // waterline. A heeled hull has no symmetry and is meshed whole.
+  // waterline. A heeled hull has no symmetry: each side is meshed in the ship's own frame and the
+  // two are joined on the centre plane (mesh_sides.h).
   const bool heeled = c.floating.heel_deg != 0;
   if (heeled && c.symmetry == "half") {
     throw UsageError("--symmetry half with --heel: a heeled hull is not symmetric about y = 0");
@@ -110,8 +112,10 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   const double t_query = seconds_since(t0);
   record.log.stage("structured");
   const long long t1 = now_ns();
+  SideJoin sides;
   StructuredMesh sm =
-      mesh_structured(ph.patches(), fine, ph.adjacency, query, ph.features, c.structured);
+      heeled ? mesh_heeled_sides(ph, c.structured, &sides)
+             : mesh_structured(ph.patches(), fine, ph.adjacency, query, ph.features, c.structured);
   const double t_mesh = seconds_since(t1);
   const StructuredReport& r = sm.report;
 
@@ -200,6 +204,13 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
           "%zu\n",
           r.border_distorted, r.border_removed, r.border_extended, r.border_split);
     if (r.nodes_welded > 0) std::printf("  nodes on one spot made one: %zu\n", r.nodes_welded);
+    if (heeled) {
+      std::printf(
+          "  heeled: each side meshed in the ship's frame; on the centre plane %zu nodes, %zu "
+          "pairs welded, %zu put into the other side's edges, %zu pairs of panels back to back "
+          "dropped, %zu small holes filled\n",
+          sides.seam_nodes, sides.welded, sides.inserted, sides.back_to_back, sides.holes_filled);
+    }
     if (r.wedges_collapsed > 0)
       std::printf("  wedge quads made triangles (a short side's ends merged): %zu\n",
                   r.wedges_collapsed);

@@ -228,6 +228,7 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     const bool cut = out.top_cut || out.waterplane_cut || out.centre_cut;
     validate_stage(args.file, cut ? "merge and cut" : "merge", fine, {});
   }
+  out.feature_options = features;
   out.features = find_features(fine, out.adjacency, patches, features);
   out.seconds_features = seconds_since(t1);
 }

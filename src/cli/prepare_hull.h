@@ -67,6 +67,7 @@ struct PreparedHull {
   double centre_tol = 0;                 // m: 2e-4 of the merged hull's largest extent
   EdgeAdjacency adjacency;               // of fine()
   FeatureSet features;                   // of fine()
+  FeatureOptions feature_options;        // what found them (hints placed, waterline set)
   double seconds_import = 0, seconds_features = 0;
   std::size_t retried_triangles = 0;  // the fine triangle count of the last retry, 0 when none
   // The check of fine() for faces through each other, which only warns: prepare_hull starts it

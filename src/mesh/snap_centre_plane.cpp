@@ -10,7 +10,7 @@
 
 namespace hm {
 
-std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol) {
+std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol, bool slivers) {
   const EdgeAdjacency adj = build_edge_adjacency(mesh.faces, mesh.vertex_count());
   std::size_t moved = 0;
   for (Index e : adj.boundary_edges) {
@@ -29,6 +29,7 @@ std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol) {
   // drop_centre_plane_faces removes it. A fine stem meeting the waterline aft of a raked
   // forefoot leaves such a sliver between the last station and the stem (property seed 1987:
   // 3 cm off the plane, panels of 2.3 m).
+  if (!slivers) return moved;
   const auto on_plane = [&](Index v) { return mesh.positions[v].y == 0; };
   const auto in_plane = [&](const Face& f) {
     for (int c = 0; c < corner_count(f); ++c)

@@ -13,8 +13,10 @@ namespace hm {
 // the plane, and on the corners of a face along it that lies within tol of the plane and would
 // lie back to back with its mirror image (centres within a twentieth of its size: a sliver at a
 // fine stem). Returns how many moved. The move is at most tol, so a mesh within a deviation
-// bound of its surface stays within that bound plus tol.
-std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol);
+// bound of its surface stays within that bound plus tol. slivers = false leaves the faces alone
+// (a heeled hull's sides, meshed apart: the other side's panels are no mirror image, and two
+// panels flattened into the plane would lie across each other).
+std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol, bool slivers = true);
 
 // Removes the faces whose corners all lie on y = 0 exactly (after snapping): a panel in the
 // symmetry plane is no part of a half hull's surface, and its mirror image would lie on it.

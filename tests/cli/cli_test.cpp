@@ -815,10 +815,9 @@ TEST(CliFloating, HeeledHalfHullIsMirroredBeforeMeshing) {
     const double va = qa["results"]["hydrostatics"]["volume_m3"].get<double>();
     const double vb = qb["results"]["hydrostatics"]["volume_m3"].get<double>();
     EXPECT_NEAR(va / vb, 1, 5e-3) << m;
-    // The structured mesher's rows on a heeled whole hull are coarser at the keel (2.7% here);
-    // the unstructured panels hold the volume as they do upright.
-    const double bound = m == "structured" ? 0.05 : 0.02;
-    EXPECT_LT(std::abs(qa["results"]["hydrostatics"]["volume_error"].get<double>()), bound) << m;
+    // Both meshers hold the volume heeled as they do upright (the structured one's rows ran
+    // round the keel until 2026-12-06, 2.7% short here; each side meshed apart, 0.97%).
+    EXPECT_LT(std::abs(qa["results"]["hydrostatics"]["volume_error"].get<double>()), 0.02) << m;
   }
 }
 

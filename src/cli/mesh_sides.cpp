@@ -1,0 +1,196 @@
+// Heeled hulls, side by side: frame -> split at the centre plane -> plan the whole hull's stations
+// -> mesh each side (starboard as its mirror image, a port side) -> join -> back to the floating
+// frame.
+#include "cli/mesh_sides.h"
+
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
+#include "mesh/adjacency.h"
+#include "mesh/snap_centre_plane.h"
+#include "quality/hydrostatics.h"
+#include "query/hull_query.h"
+#include "unstructured/cut_at_plane.h"
+
+namespace hm::cli {
+namespace {
+
+// The ship's own frame, trimmed but not heeled: p_G = A (p_F - o), with A = R_trim R^T (R the
+// floating rotation, heel then trim) and o the floating image of the ship's origin, which lies in
+// its centre plane. There p_G = R_trim p_ship, so the centre plane is y = 0 and the stations are
+// the upright hull's at that trim. The waterplane z_F = 0 is dot(up, p_G) = waterline.
+struct ShipFrame {
+  FloatingTransform to, back;
+  Vec3d up;
+  double waterline = 0;
+};
+
+ShipFrame ship_frame(const Floating& f) {
+  const FloatingTransform trim =
+      floating_placement(f.draft, f.trim_deg, 0, f.baseline_z, f.pivot_x).transform;
+  const auto& rt = trim.rotation;
+  const auto& r = f.transform.rotation;
+  ShipFrame s;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      double a = 0;
+      for (int k = 0; k < 3; ++k) a += rt[3 * i + k] * r[3 * j + k];
+      s.to.rotation[3 * i + j] = a;
+      s.back.rotation[3 * j + i] = a;
+    }
+  }
+  const Vec3d o = f.transform.translation;
+  s.to.translation = Vec3d{0, 0, 0} - s.to.rotate(o);
+  s.back.translation = o;
+  s.up = {s.to.rotation[2], s.to.rotation[5], s.to.rotation[8]};
+  s.waterline = -o.z;
+  return s;
+}
+
+Vec3d mirrored(Vec3d p) {
+  p.y = -p.y;
+  return p;
+}
+
+// The faces of one side of y = 0 (by centroid; port keeps y >= 0), vertices renumbered in order.
+// Starboard comes as its mirror image about y = 0, wound the other way, so it is a port side
+// whose normals still point out of the hull.
+SurfaceMesh side_of(const SurfaceMesh& m, bool port) {
+  SurfaceMesh out;
+  std::vector<Index> vert_old2new(m.vertex_count(), kInvalid);
+  for (std::size_t f = 0; f < m.faces.size(); ++f) {
+    const Face& face = m.faces[f];
+    if ((face_centroid(m.positions, face).y >= 0) != port) continue;
+    Face g = face;
+    for (int c = 0; c < corner_count(face); ++c) {
+      Index& v = vert_old2new[face[c]];
+      if (v == kInvalid) {
+        v = static_cast<Index>(out.positions.size());
+        out.positions.push_back(port ? m.positions[face[c]] : mirrored(m.positions[face[c]]));
+        out.vertex_patch.push_back(m.vertex_patch[face[c]]);
+        out.vertex_uv.push_back(m.vertex_uv[face[c]]);
+      }
+      g[c] = v;
+    }
+    if (!port) std::swap(g[1], is_triangle(g) ? g[2] : g[3]);
+    out.faces.push_back(g);
+    out.face_patch.push_back(m.face_patch[f]);
+  }
+  return out;
+}
+
+// The patches' mirror images about y = 0: the same (u, v) maps to the mirrored point, and the
+// flag turns so that the declared normal still points out.
+std::vector<Patch> mirrored(std::span<const Patch> patches) {
+  std::vector<Patch> out(patches.begin(), patches.end());
+  for (Patch& p : out) {
+    for (Vec3d& c : p.surface.points) c.y = -c.y;
+    p.reversed = !p.reversed;
+  }
+  return out;
+}
+
+void move_hints(std::vector<KnuckleHint>& hints, const FloatingTransform& t, bool mirror) {
+  for (KnuckleHint& h : hints) {
+    h.plane_point = t(h.plane_point);
+    h.plane_normal = t.rotate(h.plane_normal);
+    for (Vec3d& p : h.points) p = t(p);
+    if (mirror) {
+      h.plane_point = mirrored(h.plane_point);
+      h.plane_normal = mirrored(h.plane_normal);
+      for (Vec3d& p : h.points) p = mirrored(p);
+    }
+  }
+}
+
+// One side meshed: its features found again in the ship's frame (the waterline leans there), and
+// the whole hull's stations.
+StructuredMesh mesh_side(std::span<const Patch> patches, const SurfaceMesh& side,
+                         const ShipFrame& frame, bool port, FeatureOptions fo,
+                         StructuredOptions options) {
+  fo.waterline_z = frame.waterline;
+  fo.waterplane_normal = port ? frame.up : mirrored(frame.up);
+  move_hints(fo.add, frame.to, !port);
+  move_hints(fo.suppress, frame.to, !port);
+  options.waterplane_normal = fo.waterplane_normal;
+  for (BlockPlane& p : options.planes) {
+    if (!port) {
+      p.point = mirrored(p.point);
+      p.normal = mirrored(p.normal);
+    }
+  }
+  const EdgeAdjacency adj = build_edge_adjacency(side.faces, side.vertex_count());
+  const FeatureSet features = find_features(side, adj, patches, fo);
+  const HullQuery query(patches, side);
+  return mesh_structured(patches, side, adj, query, features, options);
+}
+
+}  // namespace
+
+StructuredMesh mesh_heeled_sides(const PreparedHull& hull, StructuredOptions options,
+                                 SideJoin* join) {
+  const ShipFrame frame = ship_frame(*hull.floating);
+  const std::vector<Patch> patches = transformed(hull.patches(), frame.to);
+  const std::vector<Patch> images = mirrored(patches);
+  const SurfaceMesh whole = transformed(hull.fine(), frame.to);
+  for (BlockPlane& p : options.planes) {
+    p.point = frame.to(p.point);
+    p.normal = frame.to.rotate(p.normal);
+  }
+  // The sizes from the whole hull's count, so that both sides take the same.
+  Vec3d size = options.size;
+  if (!(size.x > 0 && size.y > 0 && size.z > 0)) {
+    if (options.target_panels < 4) throw UsageError("structured: --panels must be at least 4");
+    double area = 0;
+    for (const Face& f : whole.faces) area += face_area(whole.positions, f);
+    const double h = std::sqrt(area / static_cast<double>(options.target_panels));
+    if (!(h > 0)) throw GeometryError("structured: the hull surface has no area");
+    size = {h, h, h};
+  }
+  const HullQuery whole_query(patches, whole);
+  PlaneCutOptions co;
+  co.axis = 1;
+  co.keep_both = true;
+  const PlaneCut split = cut_at_plane(patches, whole, co);
+  const SurfaceMesh port_side = side_of(split.mesh, true), stbd_side = side_of(split.mesh, false);
+
+  // One pass at the sizes: the whole hull's stations, each side on them, the join.
+  StructuredMesh out = mesh_to_count(
+      [&](const Vec3d& size) {
+        StructuredOptions o = options;
+        o.size = size;
+        const auto t0 = std::chrono::steady_clock::now();
+        const StationList stations = plan_structured_stations(whole, whole_query, hull.features, o);
+        o.station_x = stations.x;
+        o.station_border = stations.border;
+        const double seconds_plan =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        StructuredMesh port = mesh_side(patches, port_side, frame, true, hull.feature_options, o);
+        StructuredMesh stbd = mesh_side(images, stbd_side, frame, false, hull.feature_options, o);
+        // The seams onto the plane, as for a half hull, but no sliver beside them: the other
+        // side's panels are no mirror image. A panel left lying in the plane stays (an upright
+        // half drops it, as its mirror image would lie on it): here it is what joins this side's
+        // rows to the other side's seam, unless the other side has the same (join_sides).
+        for (StructuredMesh* s : {&port, &stbd})
+          snap_to_centre_plane(s->mesh, hull.centre_tol, false);
+        // Starboard back from its mirror image.
+        for (Vec3d& p : stbd.mesh.positions) p = mirrored(p);
+        for (Face& f : stbd.mesh.faces) std::swap(f[1], is_triangle(f) ? f[2] : f[3]);
+        SeamPlanes planes;
+        planes.centre_tol = hull.centre_tol;
+        planes.up = frame.up;
+        planes.waterline = frame.waterline;
+        // The mesher puts waterline nodes on the plane exactly; the frames round.
+        planes.waterline_tol = 1e-9 * hull_length(whole);
+        StructuredMesh joined = join_sides(std::move(port), std::move(stbd), planes, join);
+        joined.report.seconds_plan += seconds_plan;
+        return joined;
+      },
+      size, options);
+  for (Vec3d& p : out.mesh.positions) p = frame.back(p);
+  return out;
+}
+
+}  // namespace hm::cli
