@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "core/error.h"
@@ -105,26 +106,41 @@ void move_hints(std::vector<KnuckleHint>& hints, const FloatingTransform& t, boo
   }
 }
 
-// One side meshed: its features found again in the ship's frame (the waterline leans there), and
-// the whole hull's stations.
-StructuredMesh mesh_side(std::span<const Patch> patches, const SurfaceMesh& side,
-                         const ShipFrame& frame, bool port, FeatureOptions fo,
-                         StructuredOptions options) {
+// One side as the mesher takes it: its surface, its knuckles and boundaries found again in the
+// ship's frame (the waterline leans there, the user's hints moved along), and its query.
+struct Side {
+  SurfaceMesh surface;
+  EdgeAdjacency adjacency;
+  FeatureSet features;
+  Vec3d up;
+  std::unique_ptr<HullQuery> query;
+};
+
+Side prepare_side(std::span<const Patch> patches, SurfaceMesh surface, const ShipFrame& frame,
+                  bool port, FeatureOptions fo) {
+  Side s;
+  s.surface = std::move(surface);
   fo.waterline_z = frame.waterline;
-  fo.waterplane_normal = port ? frame.up : mirrored(frame.up);
+  fo.waterplane_normal = s.up = port ? frame.up : mirrored(frame.up);
   move_hints(fo.add, frame.to, !port);
   move_hints(fo.suppress, frame.to, !port);
-  options.waterplane_normal = fo.waterplane_normal;
-  for (BlockPlane& p : options.planes) {
-    if (!port) {
+  s.adjacency = build_edge_adjacency(s.surface.faces, s.surface.vertex_count());
+  s.features = find_features(s.surface, s.adjacency, patches, fo);
+  s.query = std::make_unique<HullQuery>(patches, s.surface);
+  return s;
+}
+
+StructuredMesh mesh_side(std::span<const Patch> patches, const Side& side, bool port,
+                         StructuredOptions options) {
+  options.waterplane_normal = side.up;
+  if (!port) {
+    for (BlockPlane& p : options.planes) {
       p.point = mirrored(p.point);
       p.normal = mirrored(p.normal);
     }
   }
-  const EdgeAdjacency adj = build_edge_adjacency(side.faces, side.vertex_count());
-  const FeatureSet features = find_features(side, adj, patches, fo);
-  const HullQuery query(patches, side);
-  return mesh_structured(patches, side, adj, query, features, options);
+  return mesh_structured(patches, side.surface, side.adjacency, *side.query, side.features,
+                         options);
 }
 
 }  // namespace
@@ -154,7 +170,10 @@ StructuredMesh mesh_heeled_sides(const PreparedHull& hull, StructuredOptions opt
   co.axis = 1;
   co.keep_both = true;
   const PlaneCut split = cut_at_plane(patches, whole, co);
-  const SurfaceMesh port_side = side_of(split.mesh, true), stbd_side = side_of(split.mesh, false);
+  const Side port_side =
+      prepare_side(patches, side_of(split.mesh, true), frame, true, hull.feature_options);
+  const Side stbd_side =
+      prepare_side(images, side_of(split.mesh, false), frame, false, hull.feature_options);
 
   // One pass at the sizes: the whole hull's stations, each side on them, the join.
   StructuredMesh out = mesh_to_count(
@@ -167,8 +186,8 @@ StructuredMesh mesh_heeled_sides(const PreparedHull& hull, StructuredOptions opt
         o.station_border = stations.border;
         const double seconds_plan =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        StructuredMesh port = mesh_side(patches, port_side, frame, true, hull.feature_options, o);
-        StructuredMesh stbd = mesh_side(images, stbd_side, frame, false, hull.feature_options, o);
+        StructuredMesh port = mesh_side(patches, port_side, true, o);
+        StructuredMesh stbd = mesh_side(images, stbd_side, false, o);
         // The seams onto the plane, as for a half hull, but no sliver beside them: the other
         // side's panels are no mirror image. A panel left lying in the plane stays (an upright
         // half drops it, as its mirror image would lie on it): here it is what joins this side's

@@ -282,12 +282,8 @@ void join_reports(StructuredReport& port, const StructuredReport& stbd) {
   port.seconds_relax += stbd.seconds_relax;
 }
 
-}  // namespace
-
-StructuredMesh join_sides(StructuredMesh port, StructuredMesh starboard, const SeamPlanes& planes,
-                          SideJoin* counts) {
-  // One mesh: starboard's vertices, faces, blocks and knuckle edges after port's.
-  StructuredMesh out = std::move(port);
+// Starboard's vertices, faces, blocks and knuckle edges appended to port's.
+void append_side(StructuredMesh& out, const StructuredMesh& starboard) {
   SurfaceMesh& m = out.mesh;
   const SurfaceMesh& s = starboard.mesh;
   const Index nv = static_cast<Index>(m.vertex_count());
@@ -303,23 +299,16 @@ StructuredMesh join_sides(StructuredMesh port, StructuredMesh starboard, const S
   for (Index b : s.face_block) m.face_block.push_back(b == kInvalid ? b : b + nb);
   for (const auto& e : starboard.knuckle_edges) out.knuckle_edges.push_back({e[0] + nv, e[1] + nv});
   join_reports(out.report, starboard.report);
-  const Index total = static_cast<Index>(m.vertex_count());
+}
 
-  // collect
-  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
-  const Seam seam[2] = {collect_seam(m, adj, 0, nv, planes),
-                        collect_seam(m, adj, nv, total, planes)};
-  SideJoin c;
-  c.seam_nodes = seam[0].nodes.size() + seam[1].nodes.size();
-
-  // weld: mutual nearest pairs within reach. The seam's ends on the waterline first, within the
-  // longer seam edge at either: where the waterline meets the plane at a small angle (a keel
-  // rising through it aft), each side may end its seam a little way along the line the two
-  // share, and nothing else joins the two ends. Then every node, within kWeldShare of the
-  // shorter seam edge at either.
-  std::vector<Index> vert_to(total);
-  for (Index v = 0; v < total; ++v) vert_to[v] = v;
-  std::vector<std::uint8_t> placed(total, 0);
+// Starboard nodes welded to port's (vert_to), mutual nearest pairs within reach. The seams' ends
+// on the waterline first, within the longer seam edge at either: where the waterline meets the
+// plane at a small angle (a keel rising through it aft), each side may end its seam a little
+// way along the line the two share, and nothing else joins the two ends. Then every node,
+// within kWeldShare of the shorter seam edge at either. placed: 1 for both nodes of a pair.
+std::size_t weld_seams(const SurfaceMesh& m, const Seam (&seam)[2], std::vector<Index>& vert_to,
+                       std::vector<std::uint8_t>& placed) {
+  std::size_t welded = 0;
   auto weld = [&](std::span<const Index> port_nodes, std::span<const Index> stbd_nodes, bool ends) {
     for (Index v : stbd_nodes) {
       if (placed[v]) continue;
@@ -332,18 +321,25 @@ StructuredMesh join_sides(StructuredMesh port, StructuredMesh starboard, const S
       if (!(d <= reach)) continue;
       vert_to[v] = p;
       placed[v] = placed[p] = 1;
-      ++c.welded;
+      ++welded;
     }
   };
   weld(seam[0].corners, seam[1].corners, true);
   weld(seam[0].nodes, seam[1].nodes, false);
+  return welded;
+}
 
-  // insert: every other seam node into the edge of the other side it lies on. Inserted nodes of
-  // one edge, ordered along it. Not a seam's end on the waterline: where the seam doubles back
-  // along the waterline (a keel rising through it at a small angle) the other side's edge there
-  // runs the other way, and a panel split at it would run its side the same way as the panel
-  // across it. What such an end leaves open in the plane, the hole fill closes.
-  std::map<std::pair<Index, Index>, std::vector<std::pair<double, Index>>> inserts;
+// Seam edge (as its face runs it) -> the other side's nodes that go into it, ascending along it.
+using Inserts = std::map<std::pair<Index, Index>, std::vector<std::pair<double, Index>>>;
+
+// Every seam node not welded into the edge of the other side it lies on. Not a seam's end on
+// the waterline: where the seam doubles back along the waterline (a keel rising through it at a
+// small angle) the other side's edge there runs the other way, and a panel split at it would
+// run its side the same way as the panel across it. What such an end leaves open in the plane,
+// the hole fill closes. nv: port's vertex count.
+Inserts plan_inserts(const SurfaceMesh& m, const Seam (&seam)[2],
+                     std::span<const std::uint8_t> placed, Index nv) {
+  Inserts inserts;
   for (int side = 0; side < 2; ++side) {
     const Seam& other = seam[1 - side];
     for (Index v : seam[side].nodes) {
@@ -387,15 +383,15 @@ StructuredMesh join_sides(StructuredMesh port, StructuredMesh starboard, const S
       auto n = own.next.find(along[i + 1].second);
       follow = follow && n != own.next.end() && n->second == along[i].second;
     }
-    if (!follow) {
-      it = inserts.erase(it);
-      continue;
-    }
-    c.inserted += along.size();
-    ++it;
+    it = follow ? std::next(it) : inserts.erase(it);
   }
+  return inserts;
+}
 
-  // split: each face with inserted nodes on its sides becomes the faces of its polygon.
+// Each face with inserted nodes on its sides becomes the faces of its polygon (split_polygon);
+// the first piece takes its slot, the others go at the end with its patch and block.
+void split_at_inserts(StructuredMesh& out, const Seam (&seam)[2], const Inserts& inserts) {
+  SurfaceMesh& m = out.mesh;
   std::map<Index, std::size_t> split_faces;  // face -> sides with nodes
   for (int side = 0; side < 2; ++side) {
     for (std::size_t e = 0; e < seam[side].edges.size(); ++e) {
@@ -426,6 +422,30 @@ StructuredMesh join_sides(StructuredMesh port, StructuredMesh starboard, const S
     --(is_triangle(original) ? b.triangles : b.quads);
     for (const Face& p : pieces) ++(is_triangle(p) ? b.triangles : b.quads);
   }
+}
+
+}  // namespace
+
+StructuredMesh join_sides(StructuredMesh port, StructuredMesh starboard, const SeamPlanes& planes,
+                          SideJoin* counts) {
+  StructuredMesh out = std::move(port);
+  SurfaceMesh& m = out.mesh;
+  const Index nv = static_cast<Index>(m.vertex_count());
+  append_side(out, starboard);
+  const Index total = static_cast<Index>(m.vertex_count());
+
+  const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
+  const Seam seam[2] = {collect_seam(m, adj, 0, nv, planes),
+                        collect_seam(m, adj, nv, total, planes)};
+  SideJoin c;
+  c.seam_nodes = seam[0].nodes.size() + seam[1].nodes.size();
+  std::vector<Index> vert_to(total);
+  for (Index v = 0; v < total; ++v) vert_to[v] = v;
+  std::vector<std::uint8_t> placed(total, 0);
+  c.welded = weld_seams(m, seam, vert_to, placed);
+  const Inserts inserts = plan_inserts(m, seam, placed, nv);
+  for (const auto& [edge, along] : inserts) c.inserted += along.size();
+  split_at_inserts(out, seam, inserts);
 
   // The welded nodes of starboard leave; knuckle edges follow.
   for (Face& f : m.faces)
