@@ -183,9 +183,9 @@ StructuredMesh mesh_heeled_sides(const PreparedHull& hull, StructuredOptions opt
 
   // One pass at the sizes: the whole hull's stations, each side on them, the join.
   StructuredMesh out = mesh_to_count(
-      [&](const Vec3d& size) {
+      [&](const Vec3d& sizes) {
         StructuredOptions o = options;
-        o.size = size;
+        o.size = sizes;
         const auto t0 = std::chrono::steady_clock::now();
         const StationList stations = plan_structured_stations(whole, whole_query, hull.features, o);
         o.station_x = stations.x;
