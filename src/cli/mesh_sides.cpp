@@ -4,11 +4,9 @@
 #include "cli/mesh_sides.h"
 
 #include <chrono>
-#include <cmath>
 #include <memory>
 #include <utility>
 
-#include "core/error.h"
 #include "mesh/adjacency.h"
 #include "mesh/snap_centre_plane.h"
 #include "quality/hydrostatics.h"
@@ -156,15 +154,7 @@ StructuredMesh mesh_heeled_sides(const PreparedHull& hull, StructuredOptions opt
     p.normal = frame.to.rotate(p.normal);
   }
   // The sizes from the whole hull's count, so that both sides take the same.
-  Vec3d size = options.size;
-  if (!(size.x > 0 && size.y > 0 && size.z > 0)) {
-    if (options.target_panels < 4) throw UsageError("structured: --panels must be at least 4");
-    double area = 0;
-    for (const Face& f : whole.faces) area += face_area(whole.positions, f);
-    const double h = std::sqrt(area / static_cast<double>(options.target_panels));
-    if (!(h > 0)) throw GeometryError("structured: the hull surface has no area");
-    size = {h, h, h};
-  }
+  const Vec3d size = structured_sizes(whole, options);
   const HullQuery whole_query(patches, whole);
   PlaneCutOptions co;
   co.axis = 1;

@@ -74,23 +74,15 @@ std::size_t snap_to_centre_plane(SurfaceMesh& mesh, double tol, bool slivers) {
 }
 
 std::size_t drop_centre_plane_faces(SurfaceMesh& mesh) {
-  std::size_t kept = 0;
-  const std::size_t n = mesh.faces.size();
-  for (std::size_t f = 0; f < n; ++f) {
+  std::vector<std::uint8_t> keep(mesh.faces.size(), 1);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Face& face = mesh.faces[f];
     bool on_plane = true;
     for (int c = 0; c < corner_count(face); ++c)
       on_plane = on_plane && mesh.positions[face[c]].y == 0;
-    if (on_plane) continue;
-    mesh.faces[kept] = face;
-    if (!mesh.face_patch.empty()) mesh.face_patch[kept] = mesh.face_patch[f];
-    if (!mesh.face_block.empty()) mesh.face_block[kept] = mesh.face_block[f];
-    ++kept;
+    keep[f] = on_plane ? 0 : 1;
   }
-  mesh.faces.resize(kept);
-  if (!mesh.face_patch.empty()) mesh.face_patch.resize(kept);
-  if (!mesh.face_block.empty()) mesh.face_block.resize(kept);
-  return n - kept;
+  return keep_faces(mesh, keep);
 }
 
 }  // namespace hm

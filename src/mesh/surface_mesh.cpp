@@ -27,4 +27,20 @@ Vec3d face_centroid(std::span<const Vec3d> p, const Face& f) {
   return c / n;
 }
 
+std::size_t keep_faces(SurfaceMesh& mesh, std::span<const std::uint8_t> keep) {
+  const std::size_t n = mesh.faces.size();
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < n; ++f) {
+    if (!keep[f]) continue;
+    mesh.faces[kept] = mesh.faces[f];
+    if (!mesh.face_patch.empty()) mesh.face_patch[kept] = mesh.face_patch[f];
+    if (!mesh.face_block.empty()) mesh.face_block[kept] = mesh.face_block[f];
+    ++kept;
+  }
+  mesh.faces.resize(kept);
+  if (!mesh.face_patch.empty()) mesh.face_patch.resize(kept);
+  if (!mesh.face_block.empty()) mesh.face_block.resize(kept);
+  return n - kept;
+}
+
 }  // namespace hm

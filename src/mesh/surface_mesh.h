@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -51,5 +52,9 @@ double face_area(std::span<const Vec3d> positions, const Face& f);
 // Unit normal by the right-hand rule over the corners (Newell's method for quads).
 Vec3d face_normal(std::span<const Vec3d> positions, const Face& f);
 Vec3d face_centroid(std::span<const Vec3d> positions, const Face& f);
+
+// Keeps the faces with keep[f] != 0, in order, and every per-face array in step with them.
+// Returns how many went. Vertices stay.
+std::size_t keep_faces(SurfaceMesh& mesh, std::span<const std::uint8_t> keep);
 
 }  // namespace hm

@@ -183,32 +183,21 @@ std::vector<Face> split_polygon(std::span<const Vec3d> pos, const std::vector<In
 std::size_t drop_back_to_back(StructuredMesh& out) {
   SurfaceMesh& m = out.mesh;
   std::map<std::array<Index, 4>, Index> seen;  // sorted corners -> first face
-  std::vector<std::uint8_t> drop(m.faces.size(), 0);
+  std::vector<std::uint8_t> keep(m.faces.size(), 1);
   std::size_t pairs = 0;
   for (Index f = 0; f < m.faces.size(); ++f) {
     std::array<Index, 4> key = m.faces[f];
     std::sort(key.begin(), key.end());
     auto [it, fresh] = seen.emplace(key, f);
-    if (fresh || drop[it->second]) continue;
-    drop[it->second] = drop[f] = 1;
+    if (fresh || !keep[it->second]) continue;
+    for (Index g : {it->second, f}) {
+      keep[g] = 0;
+      BlockReport& b = out.report.blocks[m.face_block[g]];
+      --(is_triangle(m.faces[g]) ? b.triangles : b.quads);
+    }
     ++pairs;
   }
-  if (pairs == 0) return 0;
-  std::size_t next = 0;
-  for (std::size_t f = 0; f < m.faces.size(); ++f) {
-    if (drop[f]) {
-      BlockReport& b = out.report.blocks[m.face_block[f]];
-      --(is_triangle(m.faces[f]) ? b.triangles : b.quads);
-      continue;
-    }
-    m.faces[next] = m.faces[f];
-    m.face_patch[next] = m.face_patch[f];
-    m.face_block[next] = m.face_block[f];
-    ++next;
-  }
-  m.faces.resize(next);
-  m.face_patch.resize(next);
-  m.face_block.resize(next);
+  keep_faces(m, keep);
   return pairs;
 }
 

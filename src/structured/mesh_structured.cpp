@@ -68,14 +68,7 @@ double surface_area(const SurfaceMesh& m) {
 Metric make_metric(const SurfaceMesh& surface, const StructuredOptions& o) {
   Metric m;
   m.boxes = o.size_boxes;
-  if (o.size.x > 0 && o.size.y > 0 && o.size.z > 0) {
-    m.size = o.size;
-  } else {
-    if (o.target_panels < 4) throw UsageError("structured: --panels must be at least 4");
-    const double h = std::sqrt(surface_area(surface) / static_cast<double>(o.target_panels));
-    if (!(h > 0)) throw GeometryError("structured: the hull surface has no area");
-    m.size = {h, h, h};
-  }
+  m.size = structured_sizes(surface, o);
   return m;
 }
 
@@ -270,6 +263,14 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
         return mesh_with(patches, surface, adjacency, query, features, options, metric);
       },
       metric.size, options);
+}
+
+Vec3d structured_sizes(const SurfaceMesh& surface, const StructuredOptions& o) {
+  if (o.size.x > 0 && o.size.y > 0 && o.size.z > 0) return o.size;
+  if (o.target_panels < 4) throw UsageError("structured: --panels must be at least 4");
+  const double h = std::sqrt(surface_area(surface) / static_cast<double>(o.target_panels));
+  if (!(h > 0)) throw GeometryError("structured: the hull surface has no area");
+  return {h, h, h};
 }
 
 StationList plan_structured_stations(const SurfaceMesh& surface, const HullQuery& query,

@@ -137,6 +137,10 @@ StructuredMesh mesh_structured(std::span<const Patch> patches, const SurfaceMesh
 StructuredMesh mesh_to_count(const std::function<StructuredMesh(const Vec3d&)>& mesh_at, Vec3d size,
                              const StructuredOptions& options);
 
+// The panel sizes mesh_structured starts from (m along x, y, z): options.size, or one size from
+// options.target_panels and the surface's area. Throws as mesh_structured does.
+Vec3d structured_sizes(const SurfaceMesh& surface, const StructuredOptions& options);
+
 // The stations mesh_structured would plan for this surface (x ascending, m) and which are border
 // stations (cuts and ends), for StructuredOptions::station_x and station_border.
 struct StationList {
