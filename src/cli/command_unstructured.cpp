@@ -142,6 +142,11 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
   const double t_features = ph.seconds_features;
 
   c.coarsen.fine_chord_error = t.summary.max_chord_error;
+  // The report's hull query (17 ms of BVHs and corner projections on ship_449's 37,000 fine
+  // triangles) reads only the fine surface: it is built beside the coarsening, whose rounds
+  // leave the second core idle part of the time.
+  std::unique_ptr<HullQuery> query;
+  BackgroundTask query_task([&] { query = std::make_unique<HullQuery>(patches, fine); });
   const CoarsenedMesh panels_mesh = coarsen(patches, fine, adj, features, c.coarsen, record.log);
   const CoarsenReport& r = panels_mesh.report;
   // The panels; a half hull's open side exactly on y = 0 (its file may draw it a little off).
@@ -154,8 +159,8 @@ int run_unstructured(UnstructuredCommand c, const GlobalOptions& g) {
       file_half || centre_cut ? drop_centre_plane_faces(coarse) : 0;
   record.log.stage("report");
   const long long t2 = now_ns();
-  const HullQuery query(patches, fine);
-  const DeviationMeasure dev = measure_deviation(query, coarse);
+  query_task.wait();
+  const DeviationMeasure dev = measure_deviation(*query, coarse);
   if (g.validate) {
     // The coarsening keeps every knuckle and boundary line (chords of it) and every boundary
     // loop, and stays within its deviation bound.
