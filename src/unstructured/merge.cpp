@@ -310,6 +310,7 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
     r.holes_filled += closed;
     adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
   }
+  r.folds_flipped = merge::flip_folded_flaps(w, adj);
   r.vertices_welded = s.welded;
   r.tjunctions_split = s.split;
   r.gaps_closed = s.gaps_closed;

@@ -71,6 +71,9 @@ struct MergeReport {
   // Interior edges whose two faces lay on each other (a fold of slivers the overlap cut left
   // along a chine), closed by welding the faces' third corners.
   std::size_t folds_welded = 0;
+  // Triangles folded back over their neighbours (a slit's closing fan laid over the far border),
+  // flipped flat (flip_folded_flaps).
+  std::size_t folds_flipped = 0;
   // Faces with their corners on one line, taken out by splitting a neighbour (split_flat_faces).
   std::size_t flat_faces_split = 0;
   std::size_t holes_filled = 0;  // corner holes of 3-4 vertices between patches, closed

@@ -135,6 +135,13 @@ FoldStats drop_inconsistent_remnants(Work& w, const EdgeAdjacency& adj);
 // in one pair at most; pairs in edge order.
 std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const EdgeAdjacency& adj);
 
+// Flips, pass by pass, each interior edge between two triangles folded against each other
+// (normals more than 120 degrees apart) of which one is a flap, turned against two or more of its
+// neighbours, where the flip leaves two triangles facing the same way: a fan closing a slit that
+// came out folded over the other border. adj is the mesh's current adjacency, and is again on
+// return. Returns the flips; a mesh with no flap is untouched.
+std::size_t flip_folded_flaps(Work& w, EdgeAdjacency& adj);
+
 // Drops faces with a repeated corner or (near) zero area and vertices no face uses. Returns the
 // number of faces dropped.
 std::size_t drop_degenerate(Work& w, double length);

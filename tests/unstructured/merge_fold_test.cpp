@@ -97,6 +97,77 @@ TEST(MergeSteps, AFlapFoldedFlatIsWeldedButAThinStemIsNot) {
   EXPECT_TRUE(merge::folded_edge_welds(stem, build_edge_adjacency(stem.mesh.faces, 5)).empty());
 }
 
+// A slit closed by a fan from its end, the far border's vertices a hair on the wrong side: in
+// the plane z = 0, patch 1's face 0 runs 1 -> 2 -> 0 (normal -z) and its border edge 0-1 carries
+// a fan from vertex 1 to patch 0's border vertices 3 and 4, which lie 2 cm inside face 0; the fan
+// faces +z, against face 0 and against patch 0's faces beyond (5 is their far corner). Two passes
+// flip it flat: face 0 split at 3 and 4, every face facing -z, each keeping its patch.
+TEST(MergeSteps, AFanFoldedOverTheOtherBorderIsFlippedFlat) {
+  merge::Work w =
+      work_of({{0, 0, 0}, {0, 1, 0}, {1, 0.5, 0}, {0.02, 0.33, 0}, {0.02, 0.66, 0}, {-1, 0.5, 0}},
+              {{1, 2, 0, kInvalid},
+               {1, 0, 3, kInvalid},
+               {1, 3, 4, kInvalid},
+               {3, 0, 5, kInvalid},
+               {4, 3, 5, kInvalid},
+               {1, 4, 5, kInvalid}},
+              {1, 1, 1, 0, 0, 0});
+  EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  EXPECT_EQ(merge::flip_folded_flaps(w, adj), 2u);
+  ASSERT_EQ(w.mesh.face_count(), 6u);
+  double area = 0;
+  for (const Face& f : w.mesh.faces) {
+    const Vec3d n = cross(w.mesh.positions[f[1]] - w.mesh.positions[f[0]],
+                          w.mesh.positions[f[2]] - w.mesh.positions[f[0]]);
+    EXPECT_LT(n.z, 0) << f[0] << " " << f[1] << " " << f[2];
+    area += 0.5 * norm(n);
+  }
+  EXPECT_NEAR(area, 1.0, 1e-12);  // the disc 0-2-1-5, covered once
+  EXPECT_EQ(w.mesh.face_patch, (std::vector<PatchId>{1, 1, 1, 0, 0, 0}));
+  EXPECT_TRUE(adj.inconsistent_edges.empty());
+  EXPECT_EQ(adj.boundary_loops.size(), 1u);
+  EXPECT_EQ(adj.edges.size(), build_edge_adjacency(w.mesh.faces, 6).edges.size());
+}
+
+// A razor edge (two sheets along x meeting at 5 degrees, as at a Wigley's foot) whose corner
+// triangle 0 is turned against both its neighbours: the flip of its edge with face 1 would lay
+// two triangles across the hull, facing neither sheet. Nothing flips.
+TEST(MergeSteps, ACornerTriangleAtARazorEdgeIsNotFlippedAcrossTheHull) {
+  const double s = std::sin(5 * std::numbers::pi / 180), c = std::cos(5 * std::numbers::pi / 180);
+  merge::Work w = work_of(
+      {{0, 0, 0}, {1, 0, 0}, {0.5, 0.5 * s, 0.5 * c}, {0.5, -0.5 * s, 0.5 * c}, {0.6, -0.03, 0.1}},
+      {{0, 1, 2, kInvalid}, {1, 0, 3, kInvalid}, {2, 1, 4, kInvalid}}, {0, 1, 1});
+  EdgeAdjacency adj = build_edge_adjacency(w.mesh.faces, w.mesh.vertex_count());
+  const std::vector<Face> before = w.mesh.faces;
+  EXPECT_EQ(merge::flip_folded_flaps(w, adj), 0u);
+  EXPECT_EQ(w.mesh.faces, before);
+}
+
+// The generated 24-patch full chine hull with 5% overlaps (seed 7), at its default size: two
+// slits' closing fans came out folded over the other border, and the feature finder took their
+// edges for 2 short knuckle lines more than the clean hull has. Flipped flat, the hull has the
+// clean hull's knuckles: both chines, keel and stem, and the transom's edges.
+TEST(Merge, FansFoldedOverABorderAreFlippedAndMakeNoKnuckle) {
+  HullSpec spec;
+  spec.kind = HullKind::kChine;
+  spec.patches = 24;
+  spec.full_hull = true;
+  const Merged clean = merge_of(generate_hull(spec).patches);
+  spec.defects.overlap = 0.05;
+  spec.defects.seed = 7;
+  const Merged m = merge_of(generate_hull(spec).patches);
+  EXPECT_GE(m.merged.report.folds_flipped, 1u);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  const FeatureSet fc = find_features(clean.merged.mesh, clean.adj, clean.patches, {});
+  const FeatureSet f = find_features(m.merged.mesh, m.adj, m.patches, {});
+  EXPECT_EQ(f.knuckles.size(), fc.knuckles.size());
+  EXPECT_NEAR(f.knuckle_length(), fc.knuckle_length(), 1e-3 * fc.knuckle_length());
+  const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);
+  EXPECT_EQ(x.count, 0u);
+}
+
 // Property seed 4140: a full Wigley hull of 13 patches with 1.5 cm gaps and 5% overlaps, merged
 // at 24,000 triangles. Where a starboard overlap's seam meets the keel at x = 24.3 m, a port face
 // had a starboard vertex 0.55 m up the side as its third corner and lay over the starboard
