@@ -12,6 +12,7 @@
 #include "cli/run_record.h"
 #include "cli/validate_stage.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/write_mesh.h"
 #include "io/write_polylines.h"
 #include "mesh/adjacency.h"
@@ -78,6 +79,11 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   // The surface's invariants (edge-manifold, consistently oriented, no face of no area), as
   // the meshers check the surface they start from; it fails before anything is written.
   if (g.validate) validate_stage(c.file, "merge", merged.mesh, {});
+  // Faces through each other (patches crossing that the merge did not cut, or a fold it left):
+  // counted for the report, as the meshers count them on the surface they start from, beside
+  // the features and the writing (a quarter of a second at 470,000 triangles).
+  SelfIntersections crossings;
+  BackgroundTask crossing_task([&] { crossings = measure_crossings(merged.mesh); });
   const FeatureSet features = find_features(merged.mesh, adj, hull.patches, feature_options);
   const double t_features = seconds_since(t1);
 
@@ -100,6 +106,12 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   w.info.title = "hullmesh merged surface of " + file_name(c.file);
   record.log.stage("write");
   write_mesh(c.output, merged.mesh, w);
+  crossing_task.wait();
+  const std::string crossing_warning =
+      describe_crossings(c.file, hull.patches, merged.mesh, crossings, "the merged surface");
+  if (!crossing_warning.empty() && !g.quiet) {
+    std::fprintf(stderr, "hullmesh: warning: %s\n", crossing_warning.c_str());
+  }
   record.log.finish();
   record.input = c.file;
   record.outputs = {c.output, knuckle_path, boundary_path};
@@ -109,6 +121,7 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
                     {"gaps_open", merged.report.open_gaps.size()},
                     {"overlap_triangles_removed", merged.report.overlap_triangles_removed},
                     {"patches_flipped", merged.report.patches_flipped.size()},
+                    {"crossing_pairs", crossings.count},
                     {"knuckle_lines", features.knuckles.size()},
                     {"boundary_runs", features.boundaries.size()},
                     {"validated", g.validate}};
@@ -135,6 +148,10 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
     }
     if (r.folds_welded > 0) {
       std::printf("  folds closed (two faces on each other across an edge): %zu\n", r.folds_welded);
+    }
+    if (r.folds_flipped > 0) {
+      std::printf("  folded triangles flipped flat (a fan turned against its neighbours): %zu\n",
+                  r.folds_flipped);
     }
     if (r.gap_vertices_widened > 0) {
       std::printf("  tolerance widened to the gap measured at %zu border vertices (up to %.3g m)\n",
@@ -173,9 +190,9 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
         std::printf(" %s %zu (%.4g m)", to_string(BoundaryKind(k)), by_kind[k], len_kind[k]);
     }
     std::printf(
-        "\n  topology: %zu non-manifold edges, %zu inconsistent edges, enclosed volume "
-        "%.6g m^3\n",
-        r.nonmanifold_edges, r.inconsistent_edges, r.enclosed_volume);
+        "\n  topology: %zu non-manifold edges, %zu inconsistent edges, %zu pairs of faces "
+        "through each other, enclosed volume %.6g m^3\n",
+        r.nonmanifold_edges, r.inconsistent_edges, crossings.count, r.enclosed_volume);
     std::printf("  lines: %s, %s\n", knuckle_path.c_str(), boundary_path.c_str());
     std::printf("  time: import %.3f s, tessellate %.3f s, merge %.3f s, features %.3f s\n",
                 t_import, t.summary.seconds, r.seconds, t_features);

@@ -375,6 +375,26 @@ TEST(CliMerge, Ship449OutlineHasNoHoleAndNoOpenGap) {
   }
 }
 
+// DTMB 5415 at the structured mesher's fine size for 2,000 panels: by the skeg (x = -2.01 m,
+// 1 mm off the centre plane) a slit's closing fan of patch 1 lay folded over patch 0's border,
+// one of its triangles through a patch 0 face, and every structured run there warned that the
+// surface passes through itself. The fan is flipped flat, and the report counts the crossings.
+TEST(CliMerge, Dtmb5415SkegFanIsFlippedAndNoFacesCross) {
+  const fs::path hull = test::shared_hull("dtmb5415.iges");
+  if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
+  const fs::path vtu = test::scratch_dir("cli_merge_dtmb") / "merged.vtu";
+  for (const char* size : {" --triangles 10000", " --triangles 16000"}) {
+    const auto r =
+        test::run_hullmesh("merge '" + hull.string() + "' -o '" + vtu.string() + "'" + size);
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("folded triangles flipped flat"), std::string::npos) << size << r.out;
+    EXPECT_NE(r.out.find("0 inconsistent edges, 0 pairs of faces through each other"),
+              std::string::npos)
+        << size << r.out;
+    EXPECT_EQ(r.out.find("passes through itself"), std::string::npos) << size << r.out;
+  }
+}
+
 TEST(CliMerge, MissingFileIsAnInputError) {
   const fs::path dir = test::scratch_dir("cli_merge_missing");
   const auto r = test::run_hullmesh("merge '" + (dir / "nope.igs").string() + "' -o '" +
