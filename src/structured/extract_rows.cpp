@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "core/bbox.h"
 #include "core/parallel.h"
 #include "mesh/adjacency.h"
 #include "structured/structured_steps.h"
@@ -29,6 +30,9 @@ constexpr double kContinueDeg = 45;
 // A row's curve shorter than both of these is a fragment (panels; share of the longest curve).
 constexpr double kFragmentPanels = 3;
 constexpr double kFragmentShare = 0.15;
+// ... but one at least this long (panels) that runs on at the next station or the one before is
+// a piece of hull (see drop_fragments).
+constexpr double kRunPanels = 0.5;
 
 RowCurve make_curve(const SectionPolyline& pl, const Metric& metric) {
   RowCurve c;
@@ -248,15 +252,56 @@ void add_plane_breaks(RowCurve& c, std::span<const BlockPlane> planes) {
   }
 }
 
-// Drops a row's fragments: curves under kFragmentPanels long and under kFragmentShare of its
-// longest curve. A station that grazes a raked transom or a skeg cuts off such a sliver; the
-// strips on either side cover its surface, and a sliver row of its own would pair with nothing.
-void drop_fragments(Row& row) {
+bool is_fragment(const RowCurve& c, double longest) {
+  return c.length() < kFragmentPanels && c.length() < kFragmentShare * longest;
+}
+
+double longest_curve(const Row& row) {
   double longest = 0;
   for (const RowCurve& c : row.curves) longest = std::max(longest, c.length());
-  std::erase_if(row.curves, [&](const RowCurve& c) {
-    return c.length() < kFragmentPanels && c.length() < kFragmentShare * longest;
-  });
+  return longest;
+}
+
+// The curves' bounding boxes in (y, z) come within `gap` metres of each other.
+bool near_in_section(const RowCurve& a, const RowCurve& b, double gap) {
+  BBox3d ba, bb;
+  for (const Vec3d& p : a.points) ba.add(Vec3d{0, p.y, p.z});
+  for (const Vec3d& p : b.points) bb.add(Vec3d{0, p.y, p.z});
+  return ba.lo.y <= bb.hi.y + gap && bb.lo.y <= ba.hi.y + gap && ba.lo.z <= bb.hi.z + gap &&
+         bb.lo.z <= ba.hi.z + gap;
+}
+
+// Drops the rows' fragments: curves under kFragmentPanels long and under kFragmentShare of their
+// row's longest curve. A station that grazes a raked transom or a skeg cuts off such a sliver;
+// the strips on either side cover its surface, and a sliver row of its own would pair with
+// nothing. A fragment with a fragment beside it at the next station or the one before is no
+// graze but a piece of hull that is short in section and runs on in x, and stays: the stem above
+// a bulb, forward of the neck's aftmost point, where the sections are the bulb's and the stem's
+// (the generated 48-patch round-bilge hull at 16,000 panels: the stem's rows were dropped, a fan
+// from the bulb's row end covered the stem, and the fan's panels lay in the centre plane, 0.11 m
+// off the hull).
+void drop_fragments(std::vector<Row>& rows, double gap) {
+  std::vector<double> longest(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) longest[j] = longest_curve(rows[j]);
+  const auto runs_on = [&](const RowCurve& c, std::size_t k) {
+    for (const RowCurve& d : rows[k].curves) {
+      if (is_fragment(d, longest[k]) && near_in_section(c, d, gap)) return true;
+    }
+    return false;
+  };
+  std::vector<std::vector<std::uint8_t>> drop(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (const RowCurve& c : rows[j].curves) {
+      const bool fragment = is_fragment(c, longest[j]);
+      const bool runs = (j > 0 && runs_on(c, j - 1)) || (j + 1 < rows.size() && runs_on(c, j + 1));
+      const bool kept = !fragment || (!rows[j].border && c.length() >= kRunPanels && runs);
+      drop[j].push_back(kept ? 0 : 1);
+    }
+  }
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    std::size_t i = 0;
+    std::erase_if(rows[j].curves, [&](const RowCurve&) { return drop[j][i++] != 0; });
+  }
 }
 
 // Puts a curve's end exactly where the station plane crosses the surface's nearest boundary edge
@@ -333,8 +378,8 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       grade_by_turning(c);
       row.curves.push_back(std::move(c));
     }
-    drop_fragments(row);
   });
+  drop_fragments(rows, 2 * std::max({metric.size.x, metric.size.y, metric.size.z}));
   return rows;
 }
 

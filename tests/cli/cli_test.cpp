@@ -763,6 +763,28 @@ TEST(CliStructured, StemAboveTheBulbIsCappedInsideItsStrip) {
   EXPECT_EQ(q["topology"]["boundary_loops"].get<std::size_t>(), 1u);
 }
 
+// The generated bulb hull at 8,000 panels: forward of the neck's aftmost point the stations cut
+// the stem above the bulb as a curve of its own, 0.5 to 3 panels long. Those rows were dropped as
+// fragments (grazes), a fan from the bulb row's end on the centre plane covered the whole stem,
+// and its panels in the centre plane were dropped: the stem's chord lay 0.108 m off the hull.
+// A fragment that runs on at the next station or the one before now stays as a row.
+TEST(CliStructured, StemAboveTheBulbHasRowsOfItsOwn) {
+  const fs::path dir = test::scratch_dir("cli_structured_bulb_rows");
+  const fs::path igs = dir / "rb.igs", out = dir / "panels.obj";
+  ASSERT_EQ(
+      run_hullmesh("-q generate round-bilge --patches 48 -o '" + igs.string() + "'").exit_code, 0);
+  const auto r = run_hullmesh("--validate structured '" + igs.string() + "' -o '" + out.string() +
+                              "' --panels 8000 --draft 6.15");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::ifstream in(fs::path(out).replace_extension(".run.json"));
+  const nlohmann::json record = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_TRUE(record.is_object());
+  EXPECT_LT(record["results"]["deviation_max_m"].get<double>(), 0.05);  // 0.032 measured
+  EXPECT_EQ(record["quality"]["free_edges_below_waterline"], 0);
+  const nlohmann::json q = quality_json(out);
+  EXPECT_EQ(q["crossing_pairs"].get<std::size_t>(), 0u);
+}
+
 // A full hull upright is meshed as its port half and mirrored: twice the half's panels, every
 // vertex with its mirror image, closed along the keel. --panels counts the panels written, so
 // the full hull at 1,600 is the half at 800, mirrored.
