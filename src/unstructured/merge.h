@@ -13,6 +13,7 @@
 #include "core/progress.h"
 #include "core/types.h"
 #include "core/vec.h"
+#include "mesh/adjacency.h"
 #include "mesh/surface_mesh.h"
 #include "nurbs/patch.h"
 
@@ -101,5 +102,11 @@ struct MergedSurface {
 // count. Throws GeometryError when the input arrays disagree.
 MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& triangulation,
                             const MergeOptions& options, Progress& progress);
+
+namespace merge {
+// Volume enclosed by the mesh with every boundary loop closed by a fan from its centroid, m^3 (the
+// report's enclosed_volume; adj is the mesh's).
+double enclosed_volume(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
+}  // namespace merge
 
 }  // namespace hm

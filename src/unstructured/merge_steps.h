@@ -152,9 +152,6 @@ std::size_t drop_degenerate(Work& w, double length);
 // `oriented` gets the adjacency of the oriented mesh.
 std::vector<PatchId> orient_faces(std::span<const Patch> patches, Work& w, EdgeAdjacency& oriented);
 
-// Volume enclosed by the mesh with every boundary loop closed by a fan from its centroid, m^3.
-double enclosed_volume(const SurfaceMesh& mesh, const EdgeAdjacency& adj);
-
 // A border vertex of an open gap: the distance across to the nearest border edge of another
 // patch (metres), beyond its tolerance but within options.gap_report_edges local border edges
 // (or `reach` metres, when that is farther).
