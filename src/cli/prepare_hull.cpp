@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "cli/load_hull.h"
+#include "cli/merge_mirrored.h"
 #include "cli/validate_stage.h"
 #include "core/bbox.h"
 #include "core/error.h"
@@ -155,7 +156,12 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
     if (triangles > 0 && o.edge_length <= 0)
       o.edge_length = edge_length_for_triangles(patches, triangles);
     progress.stage("tessellate");
-    out.tessellation = tessellate(patches, o, progress);
+    // A heeled half hull: the file's half alone, in the file's frame, merged and then mirrored
+    // with its merged surface (merge_mirrored_half), and placed.
+    const std::span<const Patch> file_patches = out.hull.patches;
+    out.tessellation = tessellate(
+        out.mirrored_before_meshing ? file_patches.first(file_patches.size() / 2) : patches, o,
+        progress);
     if (args.validate) {
       // Each patch's triangulation on its own: the patches are not welded yet.
       InvariantOptions io;
@@ -163,7 +169,10 @@ void prepare_hull(const PrepareArgs& args, PreparedHull& out) {
       validate_stage(args.file, "tessellate", out.tessellation.mesh, io);
     }
     progress.stage("merge");
-    out.merged = merge_patches(patches, out.tessellation.mesh, args.merge, progress);
+    out.merged = out.mirrored_before_meshing
+                     ? merge_mirrored_half(file_patches, out.tessellation, args.merge,
+                                           out.floating->transform, progress)
+                     : merge_patches(patches, out.tessellation.mesh, args.merge, progress);
     progress.stage("cut");
     // The cuts before meshing: the waterplane, then the centre plane when one half of a full
     // hull is wanted.

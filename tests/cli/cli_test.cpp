@@ -863,6 +863,29 @@ TEST(CliFloating, HeeledHalfHullIsMirroredBeforeMeshing) {
   }
 }
 
+// kcs.iges heeled 10 degrees: its half merged with its mirror image welded two copies of its
+// 2.6 mm flat keel strip under the skeg's patch, and the merged surface passed through itself 43
+// (structured) and 92 (unstructured) times at the stern; the unstructured panels 4 times, and the
+// structured mesh broke --validate with an edge of four faces at the bow. The half is merged on
+// its own and its merged surface mirrored.
+TEST(CliFloating, HeeledKcsIsItsMergedHalfMirrored) {
+  const fs::path hull = test::shared_hull("kcs.iges");
+  if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
+  const fs::path dir = test::scratch_dir("cli_heel_kcs");
+  for (const char* mesher : {"structured", "unstructured"}) {
+    const fs::path out = dir / (std::string(mesher) + ".obj");
+    const auto r =
+        run_hullmesh(std::string("--validate ") + mesher + " '" + hull.string() + "' -o '" +
+                     out.string() + "' --panels 2000 --draft 0.25 --heel 10 --no-run-json");
+    ASSERT_EQ(r.exit_code, 0) << mesher << r.out;
+    EXPECT_EQ(r.out.find("passes through itself"), std::string::npos) << mesher << r.out;
+    // The two meshers word it differently.
+    EXPECT_TRUE(r.out.find(" 0 free edges below the waterline") != std::string::npos ||
+                r.out.find("free edges below the waterline: 0") != std::string::npos)
+        << mesher << r.out;
+  }
+}
+
 // Drafts at the perpendiculars are the draft at their middle and the trim between them: both
 // meshers give the same bytes either way.
 TEST(CliFloating, DraftsAtThePerpendicularsAreADraftAndATrim) {
