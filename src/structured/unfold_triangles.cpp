@@ -8,8 +8,10 @@
 // each face flips at most once.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "mesh/adjacency.h"
+#include "mesh/edge_flip.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -22,23 +24,6 @@ constexpr double kFoldedCosine = -0.5;
 // A triangle this flat (doubled area over its longest side squared) has no normal to speak of:
 // two of its corners coincide or all three lie on a line, and another step deals with it.
 constexpr double kMinShape = 1e-6;
-
-// The unit normal of triangle f, or zero when it is that flat.
-Vec3d unit_normal(const SurfaceMesh& mesh, const Face& f) {
-  const Vec3d &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
-  const Vec3d n = cross(b - a, c - a);
-  const double longest = std::max({squared_norm(b - a), squared_norm(c - b), squared_norm(a - c)});
-  const double len = norm(n);
-  return len > kMinShape * longest && len > 0 ? n / len : Vec3d{};
-}
-
-// The corner of triangle f that is neither a nor b.
-Index off_edge(const Face& f, Index a, Index b) {
-  for (int k = 0; k < 3; ++k) {
-    if (f[k] != a && f[k] != b) return f[k];
-  }
-  return kInvalid;
-}
 
 }  // namespace
 
@@ -56,29 +41,23 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
   std::size_t flipped = 0;
   for (std::size_t e = 0; e < adj.edges.size(); ++e) {
     const MeshEdge& edge = adj.edges[e];
-    if (edge.uses != 2 || edge.same_direction) continue;
+    if (knuckle[e] || edge.uses != 2) continue;
     const Index g = edge.first_slot / 4, h = adj.opposite_face[edge.first_slot];
     if (h == kInvalid || touched[g] || touched[h]) continue;
-    if (knuckle[e] || !is_triangle(mesh.faces[g]) || !is_triangle(mesh.faces[h])) continue;
-    const Vec3d ng = unit_normal(mesh, mesh.faces[g]), nh = unit_normal(mesh, mesh.faces[h]);
+    if (!is_triangle(mesh.faces[g]) || !is_triangle(mesh.faces[h])) continue;
+    const Vec3d ng = unit_triangle_normal(mesh, mesh.faces[g], kMinShape),
+                nh = unit_triangle_normal(mesh, mesh.faces[h], kMinShape);
     if (ng == Vec3d{} || nh == Vec3d{} || dot(ng, nh) > kFoldedCosine) continue;
-    // g runs a -> b along the edge, h b -> a; the flip's triangles (a, d, c) and (d, b, c) keep
-    // the boundary a -> d -> b -> c of the pair.
-    const Index a = mesh.faces[g][edge.first_slot % 4],
-                b = mesh.faces[g][(edge.first_slot % 4 + 1) % 3];
-    const Index c = off_edge(mesh.faces[g], a, b), d = off_edge(mesh.faces[h], a, b);
-    const std::array<Index, 2> cd{std::min(c, d), std::max(c, d)};
-    if (c == kInvalid || d == kInvalid || c == d || find_edge(adj, c, d) != kInvalid ||
-        std::find(made.begin(), made.end(), cd) != made.end()) {
-      continue;
-    }
-    const Face t0{a, d, c, kInvalid}, t1{d, b, c, kInvalid};
-    const Vec3d n0 = unit_normal(mesh, t0), n1 = unit_normal(mesh, t1);
+    const std::optional<EdgeFlip> f = edge_flip(mesh, adj, static_cast<Index>(e));
+    if (!f) continue;
+    if (std::find(made.begin(), made.end(), f->made) != made.end()) continue;
+    const Vec3d n0 = unit_triangle_normal(mesh, f->t0, kMinShape),
+                n1 = unit_triangle_normal(mesh, f->t1, kMinShape);
     if (n0 == Vec3d{} || n1 == Vec3d{} || dot(n0, n1) <= 0) continue;
-    mesh.faces[g] = t0;
-    mesh.faces[h] = t1;
-    touched[g] = touched[h] = 1;
-    made.push_back(cd);
+    mesh.faces[f->g] = f->t0;
+    mesh.faces[f->h] = f->t1;
+    touched[f->g] = touched[f->h] = 1;
+    made.push_back(f->made);
     ++flipped;
   }
   return flipped;

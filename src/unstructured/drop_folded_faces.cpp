@@ -182,14 +182,7 @@ std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const Edge
   });
   const auto turned = [&](Index f, Index g) { return dot(normal[f], normal[g]) <= -kFoldCos; };
   // Asked only of faces already turned against one neighbour (a few in a merge).
-  const auto flap = [&](Index f) {
-    int against = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Index g = adj.opposite_face[4 * f + k];
-      against += g != kInvalid && turned(f, g);
-    }
-    return against >= 2;
-  };
+  const auto flap = [&](Index f) { return is_flap(adj, f, turned); };
   std::vector<std::uint8_t> taken(m.vertex_count(), 0), inconsistent(adj.edges.size(), 0);
   for (Index e : adj.inconsistent_edges) inconsistent[e] = 1;
   for (std::size_t e = 0; e < adj.edges.size(); ++e) {

@@ -135,6 +135,18 @@ FoldStats drop_inconsistent_remnants(Work& w, const EdgeAdjacency& adj);
 // in one pair at most; pairs in edge order.
 std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const EdgeAdjacency& adj);
 
+// A flap: a triangle turned against two or more of its neighbours across its edges (turned(f, g)
+// says whether g is turned against f); the fold steps differ in how far "turned" is.
+template <class Turned>
+bool is_flap(const EdgeAdjacency& adj, Index f, const Turned& turned) {
+  int against = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Index g = adj.opposite_face[4 * f + k];
+    against += g != kInvalid && turned(f, g);
+  }
+  return against >= 2;
+}
+
 // Flips, pass by pass, each interior edge between two triangles folded against each other
 // (normals more than 120 degrees apart) of which one is a flap, turned against two or more of its
 // neighbours, where the flip leaves two triangles facing the same way: a fan closing a slit that
