@@ -62,6 +62,7 @@ std::size_t split_plane_chords(MergedSurface& half, double tol) {
     half.vert_new2old.push_back(half.vert_new2old[a]);
     // Each face on the edge becomes two, the second appended with the first's patch.
     for (const std::size_t f : around) {
+      if (f >= m.face_count()) continue;  // kInvalid: no face across (not expected at two uses)
       Face& t = m.faces[f];
       for (int k = 0; k < 3; ++k) {
         const Index p = t[k], q = t[(k + 1) % 3];
