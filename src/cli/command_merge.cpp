@@ -121,6 +121,7 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
                     {"gaps_open", merged.report.open_gaps.size()},
                     {"overlap_triangles_removed", merged.report.overlap_triangles_removed},
                     {"patches_flipped", merged.report.patches_flipped.size()},
+                    {"overlaps_cut_oriented", merged.report.overlaps_cut_oriented},
                     {"crossing_pairs", crossings.count},
                     {"knuckle_lines", features.knuckles.size()},
                     {"boundary_runs", features.boundaries.size()},
@@ -166,8 +167,9 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
       std::printf(" (widest %.3g m between patches %u and %u at %.4g, %.4g, %.4g)", gw.width,
                   gw.patch_a, gw.patch_b, gw.location.x, gw.location.y, gw.location.z);
     }
-    std::printf("\n  overlaps removed: %zu triangles, %.4g m^2\n", r.overlap_triangles_removed,
-                r.overlap_area_removed);
+    std::printf("\n  overlaps removed: %zu triangles, %.4g m^2%s\n", r.overlap_triangles_removed,
+                r.overlap_area_removed,
+                r.overlaps_cut_oriented ? " (cut again with the flipped patches turned)" : "");
     std::printf("  patches flipped: %zu", r.patches_flipped.size());
     for (std::size_t i = 0; i < r.patches_flipped.size() && i < 10; ++i) {
       std::printf("%s%u", i ? ", " : " (", r.patches_flipped[i]);

@@ -249,12 +249,12 @@ void weld_folds(merge::Work& w, EdgeAdjacency& adj, double length, MergeReport& 
   adj = std::move(again);
 }
 
-}  // namespace
-
-MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& triangulation,
-                            const MergeOptions& options, Progress& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  check_input(patches, triangulation);
+// One merge of the checked triangulation. outward_sign: see remove_overlaps; covered_opposite
+// gets the overlap step's.
+MergedSurface merge_pass(std::span<const Patch> patches, const SurfaceMesh& triangulation,
+                         const MergeOptions& options, std::span<const double> outward_sign,
+                         std::vector<std::pair<PatchId, PatchId>>& covered_opposite,
+                         Progress& progress) {
   BBox3d box;
   for (const Vec3d& p : triangulation.positions) box.add(p);
   const Vec3d e = box.extent();
@@ -275,8 +275,9 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   // The border of the patch triangulations, collected again only when the overlaps changed it.
   merge::Border border = merge::collect_border(w.mesh);
   if (options.remove_overlaps) {
-    const merge::OverlapStats o =
-        merge::remove_overlaps(patches, w, border, options, length, progress);
+    merge::OverlapStats o =
+        merge::remove_overlaps(patches, w, border, options, length, outward_sign, progress);
+    covered_opposite = std::move(o.covered_opposite);
     r.overlap_triangles_removed = o.triangles;
     r.overlap_area_removed = o.area;
     if (o.changed) border = merge::collect_border(w.mesh);
@@ -329,7 +330,49 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   out.mesh = std::move(w.mesh);
   out.vert_new2old = std::move(w.vert_old);
   out.face_new2old = std::move(w.face_old);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+// The side of su x sv each patch's outside lies on, +1 or -1, as the merge oriented it.
+std::vector<double> outward_signs(std::span<const Patch> patches, std::span<const PatchId> turned) {
+  std::vector<double> sign(patches.size());
+  for (std::size_t p = 0; p < patches.size(); ++p) sign[p] = patches[p].reversed ? -1.0 : 1.0;
+  for (PatchId p : turned) sign[p] = -sign[p];
+  return sign;
+}
+
+}  // namespace
+
+MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& triangulation,
+                            const MergeOptions& options, Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  check_input(patches, triangulation);
+  std::vector<std::pair<PatchId, PatchId>> opposite;
+  MergedSurface out = merge_pass(patches, triangulation, options, {}, opposite, progress);
+  // The overlap step compares the normals of coincident layers by su x sv, and lets a covered
+  // region grow only over layers that run the way its seed's did. Where a patch that arrived
+  // flipped overlaps one that did not (a seed covered the opposite way by su x sv, the same
+  // way out of the hull as oriented), that way changes along the region, and part of the
+  // overlap stays uncut. Then the whole merge runs again with every patch turned as this one
+  // oriented it; the second stands unless its surface is worse. Layers whose outsides face each
+  // other (a knife edge, two layers back to back) are no reason to.
+  const std::vector<double> sign = outward_signs(patches, out.report.patches_flipped);
+  const bool flipped_overlap = std::any_of(opposite.begin(), opposite.end(), [&](const auto& pq) {
+    return sign[pq.first] != sign[pq.second];
+  });
+  if (flipped_overlap) {
+    MergedSurface again = merge_pass(patches, triangulation, options, sign, opposite, progress);
+    const auto rank = [](const MergeReport& r) {
+      return std::array<std::size_t, 3>{r.nonmanifold_edges, r.inconsistent_edges,
+                                        r.boundary_loops};
+    };
+    if (!(rank(out.report) < rank(again.report))) {
+      out = std::move(again);
+      out.report.overlaps_cut_oriented = true;
+    }
+  }
+  out.report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

@@ -4,7 +4,9 @@
 // Steps (one file pair each): collect the patch borders, remove_overlaps (coincident layers,
 // found with the Embree closest-point queries), snap_borders (weld border vertices and split
 // T-junctions so that borders meet vertex to vertex), orient_faces (consistent winding, normals
-// out of the ship), and a Morton reorder for locality. Positions in metres, model frame.
+// out of the ship), and a Morton reorder for locality. Where a flipped patch overlaps an
+// unflipped one, the merge runs a second time with the patches' normals turned as the first
+// oriented them. Positions in metres, model frame.
 #pragma once
 
 #include <span>
@@ -65,6 +67,9 @@ struct MergeReport {
   std::size_t overlap_triangles_removed = 0;
   double overlap_area_removed = 0;       // m^2
   std::vector<PatchId> patches_flipped;  // wound against their declared orientation, turned
+  // The merge ran twice: a flipped patch and an unflipped one overlapped, and the overlaps were
+  // cut again with the patches turned as the first merge had oriented them.
+  bool overlaps_cut_oriented = false;
   std::size_t degenerate_faces_dropped = 0;
   // Faces of one patch the snap laid on another's across a shared edge (an edge with three
   // faces), dropped as overlap remnants; their area is in overlap_area_removed.

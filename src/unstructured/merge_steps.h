@@ -35,15 +35,21 @@ struct OverlapStats {
   std::size_t triangles = 0;
   double area = 0;       // m^2
   bool changed = false;  // faces removed or corners moved: the border must be collected again
+  // (patch, patch below it) of every seed covered by a layer whose normal runs the opposite
+  // way (as compared: su x sv, or turned by outward_sign), sorted, each once.
+  std::vector<std::pair<PatchId, PatchId>> covered_opposite;
 };
 // Finds border vertices of one patch that lie inside another patch's surface (closest point
 // within a few chord errors, normals compatible, away from that patch's border), grows the
 // covered region over the patch, and cuts the patch's faces along the border of the patches
 // below it, keeping the part outside them (new vertices where edges leave them; no vertex
 // moves). Of two patches covering each other, the higher-numbered one is cut. border is
-// collect_border of the mesh as it comes in.
+// collect_border of the mesh as it comes in. outward_sign, when not empty, holds +1 or -1 per
+// patch: the side of su x sv the hull's outside lies on, as an earlier merge oriented it (the
+// normals of coincident layers are then compared with their patches turned alike).
 OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& border,
-                             const MergeOptions& options, double length, Progress& progress);
+                             const MergeOptions& options, double length,
+                             std::span<const double> outward_sign, Progress& progress);
 
 struct SnapStats {
   std::size_t welded = 0;

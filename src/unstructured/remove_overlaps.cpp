@@ -60,26 +60,42 @@ bool edge_cut_less(const EdgeCut& a, const EdgeCut& b) {
 // its seed's did.
 enum class Way : std::int8_t { kEither = 0, kSame = 1, kOpposite = -1 };
 
+// The patches with the side of su x sv their outside lies on (+1 or -1; none known: all +1).
+// A layer is compared by its outward normal where that is known: a patch that arrived flipped
+// under one that did not is then covered the same way as its neighbours are. Compared by su x
+// sv, the way asked along a covered region changed where it passed from a flipped patch below
+// onto an unflipped one, and the growth stopped there (generated Wigley hull, 100 patches, 5%
+// overlaps, every third patch flipped: a corner of patch 39 stayed over patch 6, and the snap
+// folded it).
+struct Layers {
+  std::span<const Patch> patches;
+  std::span<const double> outward_sign;
+  Vec3d normal_at(PatchId p, double u, double v) const {
+    const Vec3d n = normal(patches[p].surface, u, v);
+    return outward_sign.empty() ? n : outward_sign[p] * n;
+  }
+  double sign(PatchId p) const { return outward_sign.empty() ? 1.0 : outward_sign[p]; }
+};
+
 // How n agrees with the normal of the closest point cp, or with the normal just beside it on
 // its patch (kEither: not at all, or not the way asked): on a knuckle inside a patch (a chine at
 // a repeated knot) the normal at cp is one side's, and n, a knuckle vertex's own, may be the
 // other's (property seed 1536: the chine vertices of an overlapping patch were left uncovered,
 // and the faces between them stayed over the patch below).
-Way normal_agrees(std::span<const Patch> patches, const ClosestPoint& cp, const Vec3d& n,
-                  Way asked) {
+Way normal_agrees(const Layers& layers, const ClosestPoint& cp, const Vec3d& n, Way asked) {
   const auto agrees = [&](const Vec3d& other) {
     const double c = dot(n, other);
     if (asked != Way::kOpposite && c >= kMinNormalCos) return Way::kSame;
     if (asked != Way::kSame && -c >= kMinNormalCos) return Way::kOpposite;
     return Way::kEither;
   };
-  if (const Way w = agrees(cp.normal); w != Way::kEither) return w;
-  const NurbsSurface& s = patches[cp.patch].surface;
+  if (const Way w = agrees(layers.sign(cp.patch) * cp.normal); w != Way::kEither) return w;
+  const NurbsSurface& s = layers.patches[cp.patch].surface;
   const double du = kBeside * (s.u1 - s.u0), dv = kBeside * (s.v1 - s.v0);
   for (const Vec2d d : {Vec2d{du, 0}, Vec2d{-du, 0}, Vec2d{0, dv}, Vec2d{0, -dv}}) {
     const double u = std::clamp(cp.uv.x + d.x, s.u0, s.u1);
     const double v = std::clamp(cp.uv.y + d.y, s.v0, s.v1);
-    if (const Way w = agrees(normal(s, u, v)); w != Way::kEither) return w;
+    if (const Way w = agrees(layers.normal_at(cp.patch, u, v)); w != Way::kEither) return w;
   }
   return Way::kEither;
 }
@@ -94,18 +110,18 @@ struct Cover {
 // with n the way asked, with the way it does, or an invalid point. At a knuckle the nearest of
 // them may be the patch across it, as near as the one x lies on: that one is searched around,
 // twice at most.
-std::pair<ClosestPoint, Way> closest_alike(const HullQuery& q, std::span<const Patch> patches,
-                                           const Vec3d& x, const Vec3d& n, Way asked, PatchId first,
-                                           PatchId last, double limit, int depth = 2) {
+std::pair<ClosestPoint, Way> closest_alike(const HullQuery& q, const Layers& layers, const Vec3d& x,
+                                           const Vec3d& n, Way asked, PatchId first, PatchId last,
+                                           double limit, int depth = 2) {
   if (first >= last) return {};
   // The triangles stray from the surface by up to the chord tolerance: search them wider than
   // the distance asked of the exact surfaces.
   const ClosestPoint cp = q.closest_point_in_range(x, first, last, 20 * limit);
   if (!cp.valid() || !(cp.distance <= limit)) return {};
-  if (const Way w = normal_agrees(patches, cp, n, asked); w != Way::kEither) return {cp, w};
+  if (const Way w = normal_agrees(layers, cp, n, asked); w != Way::kEither) return {cp, w};
   if (depth == 0) return {};
-  const auto below = closest_alike(q, patches, x, n, asked, first, cp.patch, limit, depth - 1);
-  const auto above = closest_alike(q, patches, x, n, asked, cp.patch + 1, last, limit, depth - 1);
+  const auto below = closest_alike(q, layers, x, n, asked, first, cp.patch, limit, depth - 1);
+  const auto above = closest_alike(q, layers, x, n, asked, cp.patch + 1, last, limit, depth - 1);
   if (!below.first.valid()) return above;
   if (!above.first.valid()) return below;
   return above.first.distance < below.first.distance ? above : below;
@@ -114,13 +130,13 @@ std::pair<ClosestPoint, Way> closest_alike(const HullQuery& q, std::span<const P
 // The nearest patch below the vertex's own whose surface the vertex lies on with an agreeing
 // normal, or kInvalid. (Its own normal at a domain border once came out as noise, property seed
 // 4877: the knot span there was 1.1e-16 wide; the kernel's find_span now steps over such spans.)
-Cover covering_patch(const HullQuery& q, std::span<const Patch> patches, const SurfaceMesh& m,
-                     Index v, double distance, Way asked) {
+Cover covering_patch(const HullQuery& q, const Layers& layers, const SurfaceMesh& m, Index v,
+                     double distance, Way asked) {
   const PatchId own = m.vertex_patch[v];
   if (own == 0) return {};
   const Vec2d uv = m.vertex_uv[v];
-  const Vec3d n = normal(patches[own].surface, uv.x, uv.y);
-  const auto [cp, way] = closest_alike(q, patches, m.positions[v], n, asked, 0, own, distance);
+  const Vec3d n = layers.normal_at(own, uv.x, uv.y);
+  const auto [cp, way] = closest_alike(q, layers, m.positions[v], n, asked, 0, own, distance);
   return {cp.patch, way};
 }
 
@@ -494,8 +510,8 @@ std::size_t insert_lower_corners(Work& w, const Border& b, std::vector<PatchId>&
 // (generated Wigley hull, 100 patches, 5% overlaps). A vertex is reached first from the first
 // frontier vertex in ring order, and takes the way asked of it there.
 // Returns the covering patch per vertex (kInvalid: uncovered), or nothing when cancelled.
-std::vector<PatchId> grow_cover(const SurfaceMesh& m, std::span<const Patch> patches,
-                                const HullQuery& query, std::span<const Index> candidates,
+std::vector<PatchId> grow_cover(const SurfaceMesh& m, const Layers& layers, const HullQuery& query,
+                                std::span<const Index> candidates,
                                 std::span<const Cover> seed_cover, double distance,
                                 Progress& progress) {
   // Neighbours by face edge, both ways (a border vertex's last neighbour follows it in no face),
@@ -543,7 +559,7 @@ std::vector<PatchId> grow_cover(const SurfaceMesh& m, std::span<const Patch> pat
     }
     std::vector<Cover> found(next.size());
     parallel_for(0, next.size(), [&](std::size_t i) {
-      found[i] = covering_patch(query, patches, m, next[i], distance, asked[i]);
+      found[i] = covering_patch(query, layers, m, next[i], distance, asked[i]);
     });
     frontier.clear();
     for (std::size_t i = 0; i < next.size(); ++i) {
@@ -747,8 +763,10 @@ void cut_faces(Work& w, const Border& b, std::span<const PatchId> cover, const O
 }  // namespace
 
 OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& b,
-                             const MergeOptions& options, double length, Progress& progress) {
+                             const MergeOptions& options, double length,
+                             std::span<const double> outward_sign, Progress& progress) {
   OverlapStats stats;
+  const Layers layers{patches, outward_sign};
   SurfaceMesh& m = w.mesh;
   const double distance = options.overlap_distance > 0 ? options.overlap_distance : 1e-4 * length;
   // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
@@ -765,9 +783,16 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
     if (near.faces.empty()) return stats;
     const HullQuery seed_query(patches, near);
     parallel_for(0, candidates.size(), [&](std::size_t i) {
-      seed_cover[i] = covering_patch(seed_query, patches, m, candidates[i], distance, Way::kEither);
+      seed_cover[i] = covering_patch(seed_query, layers, m, candidates[i], distance, Way::kEither);
     });
   }
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (seed_cover[i].way != Way::kOpposite) continue;
+    stats.covered_opposite.push_back({m.vertex_patch[candidates[i]], seed_cover[i].patch});
+  }
+  auto& opposite = stats.covered_opposite;
+  std::sort(opposite.begin(), opposite.end());
+  opposite.erase(std::unique(opposite.begin(), opposite.end()), opposite.end());
   if (progress.cancelled()) return stats;
   if (std::all_of(seed_cover.begin(), seed_cover.end(),
                   [](const Cover& c) { return c.patch == kInvalid; })) {
@@ -778,7 +803,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   stats.changed = true;  // from here on faces may be cut
 
   std::vector<PatchId> cover =
-      grow_cover(m, patches, query, candidates, seed_cover, distance, progress);
+      grow_cover(m, layers, query, candidates, seed_cover, distance, progress);
   if (cover.empty()) return stats;
 
   const auto on_lower = [&](const Vec3d& x, PatchId p) {
