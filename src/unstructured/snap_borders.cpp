@@ -71,6 +71,9 @@ constexpr double kGridMedianEdges = 2;
 // distance from its border and heads into it within 60 degrees.
 constexpr double kBetweenShare = 0.5;
 constexpr double kIntoCos = 0.5;
+// A border vertex lies on the way another vertex of its border moved when it is within this
+// share of the move from the straight line the move took (see collapse_overrun).
+constexpr double kOnMove = 1e-3;
 
 // Per border vertex, in one pass over the border edges near it:
 //   - how wide its own patch is there: the distance to the nearest border edge of the same patch
@@ -156,6 +159,61 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
 
 double vertex_tolerance(const MergeOptions& options, double border_edge_length) {
   return options.gap_tolerance > 0 ? options.gap_tolerance : 0.5 * border_edge_length;
+}
+
+// A weld or a split moves a vertex along its own border past the neighbours it had there when a
+// collapsed patch corner opened with a gap: the generated chine hulls' transom comes down to one
+// point at the keel, and with a gap in the centre plane that point is a short row across the
+// transom's foot. The snap takes the row's end at the keel (the bottom's corner) to the centre
+// plane, back over the row, and the transom's faces on the row lay over the one beside it, in
+// its plane (full chine hulls of 2 and 3 patches with 0.1 m gaps: 70-364 pairs of faces through
+// each other; property seed 2143 in wide mode: 5 pairs of panels). The vertices passed over (the
+// row) join the moved vertex, as they were one point in the clean hull; the faces between them
+// then have a repeated corner and are dropped. Walks each moved vertex's border both ways while
+// the next vertex's place before the snap lies on the straight way the vertex moved (within
+// kOnMove of the move, ahead of where it started); serial in border order. `into` is the
+// cluster representative per border vertex, updated; `moved_to` the place each will have. A
+// cluster that is split into another patch's edge (`inserted`, by representative) stays.
+void collapse_overrun(const Border& b, std::span<const Vec3d> before,
+                      std::span<const Vec3d> moved_to, std::span<const Index> local,
+                      std::span<const std::uint8_t> inserted, double floor,
+                      std::vector<Index>& into) {
+  const std::size_t nb = b.vertices.size();
+  // Border neighbours on the vertex's own patch (border edges join vertices of one patch).
+  std::vector<std::array<Index, 2>> next(nb, {kInvalid, kInvalid});
+  std::vector<std::uint8_t> degree(nb, 0);
+  for (const BorderEdge& e : b.edges) {
+    const Index u = local[e.v0], v = local[e.v1];
+    if (degree[u] < 2) next[u][degree[u]] = v;
+    if (degree[v] < 2) next[v][degree[v]] = u;
+    ++degree[u];
+    ++degree[v];
+  }
+  const auto find = [&](Index i) {
+    while (into[i] != i) i = into[i] = into[into[i]];
+    return i;
+  };
+  for (std::size_t k = 0; k < nb; ++k) {
+    const Index i = Index(k);
+    const Vec3d d = moved_to[i] - before[i];
+    const double len2 = squared_norm(d);
+    if (!(std::sqrt(len2) > floor) || degree[i] > 2) continue;
+    for (Index start : next[i]) {
+      Index prev = i, cur = start;
+      while (cur != kInvalid && degree[cur] <= 2) {
+        const Vec3d x = before[cur] - before[i];
+        const double t = dot(x, d) / len2;
+        if (!(t > 0 && t <= 1) || norm(x - t * d) > kOnMove * std::sqrt(len2)) break;
+        const Index a = find(i), c = find(cur);
+        if (a == c || inserted[c]) break;
+        into[c] = a;
+        const Index after = next[cur][0] == prev ? next[cur][1] : next[cur][0];
+        prev = cur;
+        cur = after;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < nb; ++k) into[k] = find(Index(k));
 }
 
 SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, double length,
@@ -383,6 +441,17 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     const BorderEdge& e = b.edges[s.edge];
     const Vec3d on_edge = m.positions[e.v0] + s.t * (m.positions[e.v1] - m.positions[e.v0]);
     m.positions[b.vertices[i]] = 0.5 * (points[i] + on_edge);
+  }
+  {
+    std::vector<Vec3d> moved_to(nb);
+    for (std::size_t i = 0; i < nb; ++i) moved_to[i] = m.positions[b.vertices[rep[i]]];
+    std::vector<Index> into(rep.begin(), rep.end());
+    collapse_overrun(b, points, moved_to, local, is_inserted, closed_floor, into);
+    for (std::size_t i = 0; i < nb; ++i) {
+      if (into[i] == rep[i]) continue;
+      vert_rep[b.vertices[i]] = b.vertices[into[i]];
+      ++stats.overrun;
+    }
   }
   for (Face& f : m.faces) {
     for (int c = 0; c < 3; ++c) f[c] = vert_rep[f[c]];

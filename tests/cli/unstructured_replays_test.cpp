@@ -20,6 +20,9 @@
 //     past its surface; the deviation check projected panel points under them onto that patch's
 //     end and reported 0.57 m and 0.08 m over its bound on a chine the panels followed exactly
 //     (closest_point_query.cpp: a corner made on another patch answers for it).
+//   - seed 2143 (wide mode): a full chine hull of 3 patches with a 0.1 m gap, whose transom's
+//     foot, one point at the keel, opened into a short row the snap folded back over; 5 pairs
+//     of panels passed through each other there (collapse_overrun in snap_borders.cpp).
 #include "support/replay.h"
 
 namespace hm {
@@ -77,6 +80,10 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "chine --length 58.3353 --beam 11.1327 --draft 4.37527 --depth 5.95881 --patches 8 "
        "--seed 6834 --overlap 0.05 --duplicate-points",
        "3.50942", 800},
+      {"transom foot opened by a gap 2143",
+       "chine --length 174.128 --beam 16.5586 --draft 5.32431 --depth 8.47722 --patches 3 "
+       "--seed 2143 --full --overlap 0.05 --flip-every 4 --gap 0.105288",
+       "4.88268", 700},
   };
   test::expect_replays_break_no_hard_rule("unstructured", cases, "cli_unstructured_replays");
 }

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "query/find_self_intersections.h"
 #include "unstructured/merge_support.h"
 
 namespace hm::test {
@@ -179,6 +180,26 @@ TEST(MergeGaps, VNotchesAtTheKeelClose) {
   expect_clean_half_hull(m, "wigley, 24 patches, 0.1 m gaps, 400,000 triangles");
   EXPECT_TRUE(m.merged.report.open_gaps.empty());
   EXPECT_EQ(zero_area_faces(m.merged.mesh), 0u);
+}
+
+// Full chine hulls of 2 and 3 patches, each side one patch with its transom inside, which comes
+// down to one point at the keel. A 0.1 m gap in the centre plane opens that point into a short
+// row across the transom's foot; the snap took the row's keel end (the bottom's corner) to the
+// centre plane, back over the row, and the transom's faces on the row lay over the one beside it
+// in its plane: 148 and 70 pairs of faces through each other at the default size. The row now
+// joins the corner that passed over it, and the surface is the clean hull's there.
+TEST(MergeGaps, ATransomFootOpenedByAGapIsOnePointAgain) {
+  for (const int patches : {2, 3}) {
+    SCOPED_TRACE(patches);
+    const HullSpec spec = with_gaps(HullKind::kChine, patches, /*full=*/true, 0.1);
+    const Merged m = merge_of(generate_hull(spec).patches);
+    EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+    EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+    EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+    EXPECT_TRUE(m.merged.report.open_gaps.empty());
+    const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);
+    EXPECT_EQ(x.count, 0u) << "first near " << (x.first.empty() ? Vec3d{} : x.first[0].where).x;
+  }
 }
 
 }  // namespace
