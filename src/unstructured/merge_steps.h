@@ -53,8 +53,6 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
 
 struct SnapStats {
   std::size_t welded = 0;
-  // Border vertices a moved vertex of their own border passed over, joined to it.
-  std::size_t overrun = 0;
   std::size_t split = 0;
   std::size_t gaps_closed = 0;
   double widest = 0;  // m

@@ -447,11 +447,7 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     for (std::size_t i = 0; i < nb; ++i) moved_to[i] = m.positions[b.vertices[rep[i]]];
     std::vector<Index> into(rep.begin(), rep.end());
     collapse_overrun(b, points, moved_to, local, is_inserted, closed_floor, into);
-    for (std::size_t i = 0; i < nb; ++i) {
-      if (into[i] == rep[i]) continue;
-      vert_rep[b.vertices[i]] = b.vertices[into[i]];
-      ++stats.overrun;
-    }
+    for (std::size_t i = 0; i < nb; ++i) vert_rep[b.vertices[i]] = b.vertices[into[i]];
   }
   for (Face& f : m.faces) {
     for (int c = 0; c < 3; ++c) f[c] = vert_rep[f[c]];
