@@ -122,6 +122,8 @@ class Refiner {
     return table_.he[table_.first[ce]].corner / 3;
   }
   int hanging_count(Index t, const std::vector<std::uint8_t>& in_r) const;
+  Vec2d sheared_midpoint(const Box& box, const Vec3d& q, const Vec2d& p, const Vec2d& start,
+                         Index a, Index b, Index c, Index d) const;
   Vec2d corner_uv(Index mid, const Vec2d& wa, const Vec2d& wb) const;
   Index mid_of(std::uint64_t key) const {
     auto it = mid_.find(key);
@@ -374,13 +376,18 @@ void Refiner::place_one(const VertexRings& rings, const std::vector<std::uint8_t
       const Vec3d q = butterfly_midpoint(rings, m_.xyz, boundary, nm.a, nm.b, false, o_.tension);
       Vec2d p = start;
       const bool ok = project_local(s_, box, q, p, kResolution * norm(wb - wa));
-      // Keep the point well inside the union of the two triangles, so no child inverts.
-      const double along = dot(p - wa, wb - wa) / dot(wb - wa, wb - wa);
-      const double side_c = orient(wa, wb, p) / orient(wa, wb, wc);
-      const double side_d = orient(wb, wa, p) / orient(wb, wa, wd);
-      if (ok && std::isfinite(along) && std::abs(along - 0.5) <= kMaxSlideAlong &&
-          side_c <= kMaxSlideAcross && side_d <= kMaxSlideAcross)
-        w = p;
+      if (o_.chord_sampling == ChordSampling::kFromTriangle) {
+        const Index c = m_.tris[t][(i + 2) % 3], d = m_.tris[t2][(i2 + 2) % 3];
+        w = sheared_midpoint(box, q, ok ? p : start, start, nm.a, nm.b, c, d);
+      } else {
+        // Keep the point well inside the union of the two triangles, so no child inverts.
+        const double along = dot(p - wa, wb - wa) / dot(wb - wa, wb - wa);
+        const double side_c = orient(wa, wb, p) / orient(wa, wb, wc);
+        const double side_d = orient(wb, wa, p) / orient(wb, wa, wd);
+        if (ok && std::isfinite(along) && std::abs(along - 0.5) <= kMaxSlideAlong &&
+            side_c <= kMaxSlideAcross && side_d <= kMaxSlideAcross)
+          w = p;
+      }
     }
   } else if ((m_.flags[nm.a] & kOnTrimLoop) && (m_.flags[nm.b] & kOnTrimLoop) &&
              coarse_leaf(nm.a, nm.b) == kInvalid) {
@@ -390,6 +397,35 @@ void Refiner::place_one(const VertexRings& rings, const std::vector<std::uint8_t
   m_.xyz[id] = evaluate(s_, w.x, w.y);
   m_.flags[id] = flags;
   parent_edge_[id] = edge_key(nm.a, nm.b);
+}
+
+// A sheared patch was triangulated on a plane chart, not in (u, v): its parameter lines run side
+// by side, so an edge's (u, v) middle can map far off the edge in 3D, and tests in (u, v) say
+// nothing of 3D (the generated 100-patch round-bilge hull with gaps, at 40,000 triangles: its
+// transom's foot, a patch whose u runs across the transom and back, had an edge 0.28 m long split
+// at a point 0.75 m off it, and one child turned over its neighbours). The new point is the
+// first of these that lies along the middle half of the edge (a, b) in 3D and leaves the four
+// children of (a, b, c) and (b, a, d) facing as their parents do: the projection `p` of the
+// butterfly point q, then the surface's nearest point to q from the edge's (u, v) middle. Else
+// the (u, v) middle, as before.
+Vec2d Refiner::sheared_midpoint(const Box& box, const Vec3d& q, const Vec2d& p, const Vec2d& start,
+                                Index a, Index b, Index c, Index d) const {
+  const Vec3d &xa = m_.xyz[a], &xb = m_.xyz[b], &xc = m_.xyz[c], &xd = m_.xyz[d];
+  const Vec3d ab = xb - xa;
+  const Vec3d n_abc = cross(ab, xc - xa), n_bad = cross(xa - xb, xd - xb);
+  const auto fits = [&](const Vec2d& w) {
+    if (!(w.x >= box.u0 && w.x <= box.u1 && w.y >= box.v0 && w.y <= box.v1)) return false;
+    const Vec3d x = evaluate(s_, w.x, w.y);
+    const double along = dot(x - xa, ab) / dot(ab, ab);
+    return std::isfinite(along) && std::abs(along - 0.5) <= kMaxSlideAlong &&
+           dot(cross(x - xa, xc - xa), n_abc) > 0 && dot(cross(xb - x, xc - x), n_abc) > 0 &&
+           dot(cross(x - xb, xd - xb), n_bad) > 0 && dot(cross(xa - x, xd - x), n_bad) > 0;
+  };
+  if (fits(p)) return p;
+  const SurfaceProjection near = closest_point(s_, q, start.x, start.y);
+  const Vec2d w{near.u, near.v};
+  if (near.converged && fits(w)) return w;
+  return start;
 }
 
 Vec2d Refiner::corner_uv(Index mid, const Vec2d& wa, const Vec2d& wb) const {

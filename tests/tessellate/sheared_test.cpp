@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "nurbs/generate_hull.h"
+#include "nurbs/nurbs_surface.h"
 #include "nurbs/patch.h"
 #include "support/test_support.h"
 #include "tess_fixtures.h"
@@ -82,6 +84,38 @@ TEST(ShearedPatch, AStraightCornerPlateGetsRoundTriangles) {
   // Along the sides the triangles fan from border samples; inside they are about equilateral.
   EXPECT_LT(double(thin), 0.05 * double(m.t.mesh.face_count()));
   EXPECT_EQ(m.against, 0u);
+}
+
+// The generated full round-bilge hull of 100 patches with 0.1 m gaps has a transom patch at its
+// foot whose u runs across the transom and back: sheared, triangulated on a plane chart. Its
+// refinement split edges at their (u, v) middles and tested the new points in (u, v), where the
+// chart's triangles say nothing: at 40,000 triangles an edge 0.28 m long was split at a point
+// 0.75 m off it, and a child triangle lay turned over its neighbours (the merge then had 14 and
+// 20 pairs of faces through each other, with gaps, and with every defect). Every triangle of
+// the tessellation now faces as its patch does.
+TEST(ShearedPatch, RefinementTurnsNoTriangleOver) {
+  HullSpec spec;
+  spec.kind = HullKind::kRoundBilge;
+  spec.patches = 100;
+  spec.full_hull = true;
+  spec.defects.gap = 0.1;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  TessellateOptions o;
+  o.edge_length = edge_length_for_triangles(patches, 40000);
+  const Tessellation t = tessellate(patches, o, silent_progress());
+  const SurfaceMesh& m = t.mesh;
+  ASSERT_EQ(m.vertex_uv.size(), m.vertex_count());
+  std::size_t turned = 0;
+  for (std::size_t f = 0; f < m.face_count(); ++f) {
+    const Face& face = m.faces[f];
+    const Vec3d& a = m.positions[face[0]];
+    const Vec3d n = cross(m.positions[face[1]] - a, m.positions[face[2]] - a);
+    const Vec2d uv =
+        (1.0 / 3.0) * (m.vertex_uv[face[0]] + m.vertex_uv[face[1]] + m.vertex_uv[face[2]]);
+    const NurbsSurface& s = patches[m.face_patch[f]].surface;
+    turned += dot(n, normal(s, uv.x, uv.y)) < 0;
+  }
+  EXPECT_EQ(turned, 0u);
 }
 
 TEST(ShearedPatch, SameBytesWithOneAndTwoThreads) {
