@@ -4,12 +4,14 @@
 // (its tolerance is at most half of it) and find the nearest border vertex and edge of other
 // patches -> select welds (nearest first, never two vertices of one patch in a cluster, never
 // across a third patch) and splits (a vertex well inside another patch's edge) -> apply: average
-// welded positions, move split vertices halfway onto the edge, replace each split triangle by a
+// welded positions, move split vertices halfway onto the edge (or, where two patches meet at a
+// knuckle across the gap, to the corner their surfaces make), replace each split triangle by a
 // fan.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 
 #include "core/parallel.h"
 #include "kernels/weld.h"
@@ -27,6 +29,9 @@ constexpr double kEndFraction = 0.3;
 constexpr double kBeyondEnd = 1e-3;
 // ... and so does one whose nearest point is nearer an end than this share of its distance.
 constexpr double kFacesEndShare = 0.25;
+// ... unless the border goes on past that end within about 30 degrees of the edge: the vertex
+// then lies across a straight run of a border finer than the gap is wide.
+constexpr double kStraightCos = 0.866;
 
 struct Split {
   Index edge = kInvalid;  // border edge index
@@ -74,6 +79,137 @@ constexpr double kIntoCos = 0.5;
 // A border vertex lies on the way another vertex of its border moved when it is within this
 // share of the move from the straight line the move took (see collapse_overrun).
 constexpr double kOnMove = 1e-3;
+
+// A gap is closed at the corner its two surfaces make when their normals there differ by at
+// least this (degrees): the tangent planes then meet in a line near the gap.
+constexpr double kCornerMinDeg = 5;
+// A border vertex whose two border faces' planes differ by this much (degrees) is on a knuckle of
+// its own patch: well above the turn of a curved surface between two faces (a bilge of 2 m
+// radius, faces of 0.23 m: 7 degrees), below the knuckle threshold.
+constexpr double kBentDeg = 20;
+// Weight of the pull towards the members' mean, against the unit normals' planes: it only fixes
+// the point along the line the planes meet in (the border's direction).
+constexpr double kCornerPull = 1e-4;
+// The corner is taken when it lies no farther from the members' mean than this share of their
+// spread; otherwise the planes meet too far off (a step, nearly parallel sides) and the mean stays.
+constexpr double kCornerReach = 0.6;
+// ... and where the gap is at least this share of the border edges there: a narrower one is two
+// samplings of one curve a chord error apart (a clean seam at a knuckle), whose vertices lie on
+// the curve already.
+constexpr double kCornerMinGap = 0.1;
+// ... and when it lies at least this share of the border edges from the mean, which tilts the
+// faces there by about 0.3 degrees: a smaller move restores no knuckle, and the mean keeps the
+// mesh as it was (kcs's bulb, where two patches meet at a 15 degree crease: moves of 1-35 um
+// there made one edge of its fine mesh a knuckle, and the structured mesher a block more).
+constexpr double kCornerMinMove = 0.005;
+// ... and when no member would go back into its own patch by more than this cosine to reach it.
+constexpr double kCornerBack = 0.25;
+
+// One side of a gap, as the corner sees it: a border vertex (or a point on a border edge), the
+// plane its surface ends in, the way into its patch, and the ways its border runs on from it.
+struct CornerSide {
+  Vec3d p;
+  Vec3d n;         // unit surface normal (orientation does not matter); zero: no one plane
+  Vec3d in;        // unit, into its patch
+  Vec3d along[2];  // unit, along its border edges from p (zero where there is none)
+};
+
+// The plane of each border vertex's surface where it ends: the mean of the normals of the faces
+// along its border edges. Zero where those faces' planes differ by kBentDeg or more (a patch
+// corner on a knuckle of its own, such as a transom's foot at the keel: no one plane holds the
+// vertex there). With the ways its border edges run from it.
+std::vector<CornerSide> corner_sides(const SurfaceMesh& m, const Border& b,
+                                     std::span<const Index> local, std::span<const Vec3d> inward) {
+  const double min_cos = std::cos(kBentDeg * std::numbers::pi / 180);
+  const std::size_t nb = b.vertices.size();
+  std::vector<CornerSide> out(nb);
+  std::vector<Vec3d> first(nb, Vec3d{});
+  std::vector<std::uint8_t> bent(nb, 0), runs(nb, 0);
+  for (const BorderEdge& e : b.edges) {
+    const Vec3d f = face_normal(m.positions, m.faces[e.face]);
+    for (const Index v : {e.v0, e.v1}) {
+      const Index i = local[v];
+      // Faces of one patch may arrive turned against each other before orient_faces.
+      if (squared_norm(first[i]) == 0) first[i] = f;
+      if (std::abs(dot(f, first[i])) < min_cos) bent[i] = 1;
+      out[i].n += dot(f, first[i]) < 0 ? -1.0 * f : f;
+      if (runs[i] < 2) {
+        out[i].along[runs[i]++] = normalized(m.positions[v == e.v0 ? e.v1 : e.v0] - m.positions[v]);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < nb; ++i) {
+    out[i].p = m.positions[b.vertices[i]];
+    out[i].n = bent[i] ? Vec3d{} : normalized(out[i].n);
+    out[i].in = inward[i];
+  }
+  return out;
+}
+
+// Where the gap between two sides closes: the point nearest their mean c on the line their
+// surfaces' planes meet in, so that two patches meeting at a knuckle across a gap meet at the
+// knuckle again, not on a chamfer across it (which halves the knuckle's angle into two creases).
+// A side whose border turns off the knuckle there (a patch corner: the side's border runs on
+// along the deck, or the centre plane) keeps to that border's line too: the plane through p
+// along it and the surface normal (the deck's plane, the centre plane), else the point nearest
+// the mean slides off it. The mean where the normals agree (a smooth seam), the gap is a chord
+// error wide, the planes meet far off, or a side would go back over its own patch.
+Vec3d close_at_corner(const CornerSide (&side)[2], const Vec3d& c, double edge) {
+  const CornerSide &a = side[0], &b = side[1];
+  if (squared_norm(a.n) == 0 || squared_norm(b.n) == 0) return c;
+  const double spread = norm(a.p - b.p);
+  const double min_cos = std::cos(kCornerMinDeg * std::numbers::pi / 180);
+  if (!(std::abs(dot(a.n, b.n)) < min_cos) || !(spread > 0) || spread < kCornerMinGap * edge) {
+    return c;
+  }
+  // Least squares over the planes, relative to c: (sum n n^T + pull I) d = sum n (n . (q - c)).
+  double m[3][3] = {{kCornerPull, 0, 0}, {0, kCornerPull, 0}, {0, 0, kCornerPull}};
+  double r[3] = {0, 0, 0};
+  const auto add_plane = [&](const Vec3d& n, const Vec3d& q) {
+    const double h = dot(n, q - c);
+    for (int x = 0; x < 3; ++x) {
+      r[x] += n[x] * h;
+      for (int y = 0; y < 3; ++y) m[x][y] += n[x] * n[y];
+    }
+  };
+  add_plane(a.n, a.p);
+  add_plane(b.n, b.p);
+  const Vec3d knuckle = normalized(cross(a.n, b.n));
+  for (const CornerSide* s : {&a, &b}) {
+    // Its border runs along the knuckle line (within about 30 degrees) one way at least; the
+    // other way, when it turns off it, gives the border's plane.
+    const double c0 = std::abs(dot(s->along[0], knuckle));
+    const double c1 = squared_norm(s->along[1]) == 0 ? c0 : std::abs(dot(s->along[1], knuckle));
+    if (std::max(c0, c1) < kStraightCos) return c;
+    if (std::min(c0, c1) >= kStraightCos) continue;
+    add_plane(normalized(cross(c0 < c1 ? s->along[0] : s->along[1], s->n)), s->p);
+  }
+  const auto det3 = [](const double q[3][3]) {
+    return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) -
+           q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+           q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+  };
+  const double det = det3(m);
+  if (!(det > 0)) return c;
+  Vec3d d;
+  for (int k = 0; k < 3; ++k) {
+    double q[3][3];
+    for (int x = 0; x < 3; ++x) {
+      for (int y = 0; y < 3; ++y) q[x][y] = y == k ? r[x] : m[x][y];
+    }
+    d[k] = det3(q) / det;
+  }
+  if (!is_finite(d) || !(norm(d) <= kCornerReach * spread) || norm(d) < kCornerMinMove * edge) {
+    return c;
+  }
+  // Each side reaches the corner by going on past its border, not back over its own patch
+  // (which would fold its faces).
+  for (const CornerSide* s : {&a, &b}) {
+    const Vec3d go = c + d - s->p;
+    if (dot(go, s->in) > kCornerBack * norm(go)) return c;
+  }
+  return c + d;
+}
 
 // Per border vertex, in one pass over the border edges near it:
 //   - how wide its own patch is there: the distance to the nearest border edge of the same patch
@@ -258,6 +394,24 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     return dot(ij, edge_inward(m, b.edges[si.edge])) > kIntoCos * d &&
            dot(-ij, edge_inward(m, b.edges[sj.edge])) > kIntoCos * d;
   };
+  // True when border vertices i and j are the two halves of a full hull, each within its
+  // tolerance of the centre plane, leaving it to either side at least kWedgeMin apart, the one
+  // across the wedge from the other (as nearest_edges lets an edge through the fold test): a fine
+  // stem's top corners at the deck, a gap apart, whose borders turn there into the deck edge so
+  // that no edge of the other lies across.
+  const auto across_wedge = [&](Index i, Index j) {
+    if (!(std::abs(points[i].y) <= tol[i] && std::abs(points[j].y) <= tol[j])) return false;
+    if (!(inward[i].y * inward[j].y < 0)) return false;
+    const Vec3d wedge = inward[i] - inward[j];
+    const double w = norm(wedge);
+    const Vec3d across = points[i] - points[j];
+    const double d = norm(across);
+    // Neither lies on (or near) another patch's border: it belongs there, not on its mirror.
+    const auto clear = [&](Index k) {
+      return near[k].edge == kInvalid || near[k].distance >= 0.5 * d;
+    };
+    return w >= kWedgeMin && clear(i) && clear(j) && dot(across, wedge) >= kAcrossCos * d * w;
+  };
   if (nb > 1 && reach > 0) {
     const std::vector<ClosePair> close = find_close_pairs(points, group, reach);
     // A weld is held to a share of the edges at its ends (kEndFraction of twice them), so that it
@@ -290,8 +444,8 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       // Two patches on either side of a strip narrower than the tolerance: each vertex belongs
       // on the strip's border, not on the other's.
       if (!coincident && across_third_patch(p.a, p.b)) continue;
-      if (p.distance <= limit &&
-          (coincident || touching || dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
+      if (p.distance <= limit && (coincident || touching || (mutual && across_wedge(p.a, p.b)) ||
+                                  dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
         pairs.push_back(p);
       }
     }
@@ -305,7 +459,10 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     const Index end = s.t < 0.5 ? e.v0 : e.v1;
     const double len = norm(m.positions[e.v1] - m.positions[e.v0]);
     const double d = norm(points[i] - m.positions[end]);
-    if (d <= tol[i] && d <= kEndFraction * len) {
+    // Near the end along the edge, not only near it in space: across a gap wider than the edges
+    // (a fine border facing a coarse one), a vertex squarely across from an end lies farther
+    // from it than kEndFraction of the edge, and would otherwise be split in a hair from it.
+    if (d <= tol[i] && (d <= kEndFraction * len || std::min(s.t, 1 - s.t) <= kEndFraction)) {
       const Index j = local[end];
       pairs.push_back({Index(std::min<std::size_t>(i, j)), Index(std::max<std::size_t>(i, j)), d});
     }
@@ -335,6 +492,30 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
 
   SnapStats stats;
   const double closed_floor = 1e-9 * length;
+  // Border edges at each border vertex (up to two; more where the border touches itself).
+  std::vector<std::array<Index, 2>> edges_at(nb, {kInvalid, kInvalid});
+  for (std::size_t e = 0; e < b.edges.size(); ++e) {
+    for (const Index v : {local[b.edges[e].v0], local[b.edges[e].v1]}) {
+      if (edges_at[v][0] == kInvalid) {
+        edges_at[v][0] = Index(e);
+      } else if (edges_at[v][1] == kInvalid) {
+        edges_at[v][1] = Index(e);
+      }
+    }
+  }
+  // True when the border goes on straight (within kStraightCos) past the end (v1 if at_v1) of
+  // border edge e: a vertex facing that end faces a straight run of the border, not a corner.
+  const auto runs_on_straight = [&](Index e, bool at_v1) {
+    const BorderEdge& be = b.edges[e];
+    const Index end = at_v1 ? be.v1 : be.v0;
+    const auto& at = edges_at[local[end]];
+    const Index next = at[0] == e ? at[1] : at[0];
+    if (next == kInvalid || (at[0] != e && at[1] != e)) return false;
+    const BorderEdge& ne = b.edges[next];
+    const Vec3d into = m.positions[end] - m.positions[at_v1 ? be.v0 : be.v1];
+    const Vec3d on = m.positions[ne.v0 == end ? ne.v1 : ne.v0] - m.positions[end];
+    return dot(into, on) >= kStraightCos * norm(into) * norm(on);
+  };
   // Select splits: a vertex inside an edge whose ends are not in its cluster.
   struct Insert {
     Index edge;
@@ -373,7 +554,11 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     // a split would stitch its own border onto the edge across that angle.
     const double from_end = std::min(s.t, 1 - s.t);
     const double edge_len = norm(m.positions[e.v1] - m.positions[e.v0]);
-    if (from_end <= kBeyondEnd || from_end * edge_len < kFacesEndShare * s.distance) continue;
+    if (from_end <= kBeyondEnd) continue;
+    if (from_end * edge_len < kFacesEndShare * s.distance &&
+        !runs_on_straight(s.edge, s.t >= 0.5)) {
+      continue;
+    }
     const Index r = rep[i];
     if (rep[local[e.v0]] == r || rep[local[e.v1]] == r) continue;
     // The split gives the edges from the vertex to both ends one more face. Where the welds have
@@ -430,17 +615,105 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       if (across > closed_floor) ++stats.gaps_closed;
     }
   }
-  for (std::size_t i = 0; i < nb; ++i) {
-    if (count[i] > 1) m.positions[b.vertices[i]] = sum[i] / double(count[i]);
+  // A cluster of two (one vertex of each of two patches) closes at the corner the two make. At
+  // three or more patches the planes are of a junction (a chine running into a seam with gaps in
+  // both, a stem), whose corner the gaps leave too far from true to be worth the fold it risks.
+  const std::vector<CornerSide> sides = corner_sides(m, b, local, inward);
+  // True when border vertex i has no other patch's border nearer than patch q's: a corner is of
+  // two patches, and a third between or beside them (an overlap's remnant strip along a chine,
+  // the property test's seed 2122 in wide mode) is not in its planes.
+  const auto faces_only = [&](Index i, PatchId q) {
+    return near[i].edge == kInvalid || b.edges[near[i].edge].patch == q;
+  };
+  // Faces at each border vertex (count -> scan -> scatter), to test a corner against: a vertex
+  // taken to the corner while its neighbours stay (receded, unpaired) may turn a face over (the
+  // property test's seed 2143 in wide mode: a full chine hull's keel restored 0.03 m down at the
+  // stem, under the slivers beside it).
+  std::vector<Index> face_start(nb + 1, 0);
+  for (const Face& f : m.faces) {
+    for (int k = 0; k < 3; ++k) {
+      if (local[f[k]] != kInvalid) ++face_start[local[f[k]] + 1];
+    }
   }
-  // Split vertices that joined no cluster move halfway across the gap (each side gives half).
+  for (std::size_t i = 0; i < nb; ++i) face_start[i + 1] += face_start[i];
+  std::vector<Index> faces_of(face_start[nb]);
+  {
+    std::vector<Index> fill(face_start.begin(), face_start.end() - 1);
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        if (local[m.faces[f][k]] != kInvalid) faces_of[fill[local[m.faces[f][k]]]++] = Index(f);
+      }
+    }
+  }
+  const auto points_before = [&](Index v) {
+    return local[v] != kInvalid ? points[local[v]] : m.positions[v];
+  };
+  // True when no face at border vertex i turns by 90 degrees or more with i at x (the other
+  // corners where they were before the snap).
+  const auto keeps_facing = [&](Index i, const Vec3d& x) {
+    const Index v = b.vertices[i];
+    for (Index k = face_start[i]; k < face_start[i + 1]; ++k) {
+      const Face& f = m.faces[faces_of[k]];
+      Vec3d q[3];
+      for (int c = 0; c < 3; ++c) q[c] = f[c] == v ? x : points_before(f[c]);
+      const Vec3d was = cross(points_before(f[1]) - points_before(f[0]),
+                              points_before(f[2]) - points_before(f[0]));
+      if (!(dot(cross(q[1] - q[0], q[2] - q[0]), was) > 0)) return false;
+    }
+    return true;
+  };
+  std::vector<Index> partner(nb, kInvalid);
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (rep[i] != i && count[rep[i]] == 2) partner[rep[i]] = Index(i);
+  }
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (count[i] <= 1) continue;
+    const Vec3d mean = sum[i] / double(count[i]);
+    const Index j = partner[i];
+    if (j == kInvalid) {
+      m.positions[b.vertices[i]] = mean;
+      continue;
+    }
+    if (!faces_only(Index(i), group[j]) || !faces_only(j, group[i])) {
+      m.positions[b.vertices[i]] = mean;
+      continue;
+    }
+    const double edge = std::min(b.edge_length[i], b.edge_length[j]);
+    const Vec3d x = close_at_corner({sides[i], sides[j]}, mean, edge);
+    m.positions[b.vertices[i]] = keeps_facing(Index(i), x) && keeps_facing(j, x) ? x : mean;
+  }
+  // Split vertices that joined no cluster move halfway across the gap (each side gives half), or
+  // to the corner the two sides make.
   for (std::size_t i = 0; i < nb; ++i) {
     const Split& s = near[i];
     if (s.edge == kInvalid || count[rep[i]] > 1) continue;
     if (!is_inserted[i]) continue;
     const BorderEdge& e = b.edges[s.edge];
-    const Vec3d on_edge = m.positions[e.v0] + s.t * (m.positions[e.v1] - m.positions[e.v0]);
-    m.positions[b.vertices[i]] = 0.5 * (points[i] + on_edge);
+    const Vec3d e0 = m.positions[e.v0], e1 = m.positions[e.v1];
+    const Vec3d on_edge = e0 + s.t * (e1 - e0);
+    if (!faces_only(local[e.v0], group[i]) || !faces_only(local[e.v1], group[i])) {
+      m.positions[b.vertices[i]] = 0.5 * (points[i] + on_edge);
+      continue;
+    }
+    // The edge's side: its face's plane, and its border running on both ways along the edge.
+    CornerSide across{on_edge,
+                      face_normal(m.positions, m.faces[e.face]),
+                      edge_inward(m, e),
+                      {normalized(e0 - on_edge), normalized(e1 - on_edge)}};
+    const double edge = std::min(b.edge_length[i], norm(e1 - e0));
+    const Vec3d mid = 0.5 * (points[i] + on_edge);
+    const Vec3d x = close_at_corner({sides[i], across}, mid, edge);
+    // The edge's face becomes a fan from its third corner through x: both pieces keep facing.
+    const Face& f = m.faces[e.face];
+    Index apex = f[0];
+    for (int c = 0; c < 3; ++c) {
+      if (f[c] != e.v0 && f[c] != e.v1) apex = f[c];
+    }
+    const Vec3d pa = m.positions[apex];
+    const Vec3d was = cross(e1 - e0, pa - e0);
+    const bool fan_keeps =
+        dot(cross(x - e0, pa - e0), was) > 0 && dot(cross(e1 - x, pa - x), was) > 0;
+    m.positions[b.vertices[i]] = fan_keeps && keeps_facing(Index(i), x) ? x : mid;
   }
   {
     std::vector<Vec3d> moved_to(nb);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "query/find_self_intersections.h"
+#include "unstructured/features.h"
 #include "unstructured/merge_support.h"
 
 namespace hm::test {
@@ -200,6 +201,64 @@ TEST(MergeGaps, ATransomFootOpenedByAGapIsOnePointAgain) {
     const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);
     EXPECT_EQ(x.count, 0u) << "first near " << (x.first.empty() ? Vec3d{} : x.first[0].where).x;
   }
+}
+
+FeatureSet features_of(const Merged& m) {
+  return find_features(m.merged.mesh, m.adj, m.patches, {});
+}
+
+// The half round-bilge hull of 2 patches (the transom and the rest) with 0.1 m gaps, at 40,000
+// triangles: each patch stops up to 0.05 m short of the transom's edge, the side on the side, the
+// transom on the transom. The gap was closed on the chamfer between the two borders, which split
+// the edge's 90 degrees into two creases of about 45, and the knuckle ran from one to the other:
+// 9 lines, 7.69 m, where the clean hull has 1 of 7.45 m. The side's border is finer than the gap
+// is wide, which had kept the transom's vertices from joining it: each lay farther from the end
+// of the side's edge across from it than 0.3 of that edge, and faced the edge's end. Now such a
+// vertex joins the end its edge runs on to, and a pair of vertices at a knuckle closes at the
+// corner of their two surfaces.
+TEST(MergeGaps, AKnuckleAcrossAGapClosesAtItsCorner) {
+  const HullSpec spec = with_gaps(HullKind::kRoundBilge, 2, /*full=*/false, 0.1);
+  const std::vector<Patch> broken = generate_hull(spec).patches;
+  const std::vector<Patch> clean = generated(HullKind::kRoundBilge, 2).patches;
+  const Merged m = merge_of(broken, edge_length_for_triangles(broken, 40000));
+  const Merged ref = merge_of(clean, edge_length_for_triangles(clean, 40000));
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  const FeatureSet f = features_of(m), f_ref = features_of(ref);
+  ASSERT_EQ(f_ref.knuckles.size(), 1u);
+  EXPECT_EQ(f.knuckles.size(), 1u);
+  EXPECT_NEAR(f.knuckle_length(), f_ref.knuckle_length(), 1e-3 * f_ref.knuckle_length());
+  // On the transom's edge (x = 0), not beside it, but at its two ends: there three borders meet
+  // (the centre plane's or the deck's as well), and the two vertices take their mean, 0.025 m
+  // aft of the transom.
+  ASSERT_FALSE(f.knuckles.empty());
+  const std::vector<Index>& line = f.knuckles[0].vertices;
+  double off = 0;
+  for (std::size_t k = 1; k + 1 < line.size(); ++k) {
+    off = std::max(off, std::abs(m.merged.mesh.positions[line[k]].x));
+  }
+  EXPECT_LT(off, 1e-3) << "a knuckle vertex off the transom's plane";
+}
+
+// The full Wigley of 2 patches (its halves) with 0.1 m gaps: each half stops 0.05 m from the
+// centre plane, 0.25 m aft of the stem where the stem is fine. At the deck the halves' corners
+// were left apart (their borders turn there into the deck edge, so no edge of the other lay
+// across), a notch was filled flat, and the stem's knuckle stopped 0.72 m below the deck at
+// both ends (113.6 m where the clean hull has 115.6). The two corners now weld as the two halves
+// across the wedge of a fine stem.
+TEST(MergeGaps, AFineStemsTopCornersWeldAcrossAGap) {
+  const HullSpec spec = with_gaps(HullKind::kWigley, 2, /*full=*/true, 0.1);
+  const Merged m = merge_of(generate_hull(spec).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  ASSERT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  const FeatureSet f = features_of(m);
+  ASSERT_EQ(f.knuckles.size(), 1u);
+  double top = -1e300;
+  for (const Vec3d& p : m.merged.mesh.positions) top = std::max(top, p.z);
+  const std::vector<Index>& line = f.knuckles[0].vertices;
+  EXPECT_NEAR(m.merged.mesh.positions[line.front()].z, top, 1e-6);
+  EXPECT_NEAR(m.merged.mesh.positions[line.back()].z, top, 1e-6);
 }
 
 }  // namespace
