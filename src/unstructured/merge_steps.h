@@ -51,6 +51,23 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
                              const MergeOptions& options, double length,
                              std::span<const double> outward_sign, Progress& progress);
 
+// One side of a gap, as the corner sees it: a border vertex (or a point on a border edge), the
+// plane its surface ends in, the way into its patch, and the ways its border runs on from it.
+struct CornerSide {
+  Vec3d p;
+  Vec3d n;         // unit surface normal (orientation does not matter); zero: no one plane
+  Vec3d in;        // unit, into its patch
+  Vec3d along[2];  // unit, along its border edges from p (zero where there is none)
+};
+
+// One per border vertex (in border order); local maps mesh vertex -> border index, inward is
+// vertex_inward's.
+std::vector<CornerSide> corner_sides(const SurfaceMesh& m, const Border& b,
+                                     std::span<const Index> local, std::span<const Vec3d> inward);
+// The point where the gap between two sides closes (close_at_corner.cpp): their corner when they
+// meet at a knuckle, else c (their mean). edge: the border edges' length there, m.
+Vec3d close_at_corner(const CornerSide (&side)[2], const Vec3d& c, double edge);
+
 struct SnapStats {
   std::size_t welded = 0;
   std::size_t split = 0;
