@@ -2,6 +2,8 @@
 // parts them, the point that closes it lies where their surfaces' planes meet (with the plane of
 // a border that turns off there), not on the chamfer between the two receded borders. Used by
 // the snap (snap_borders.cpp) for welds of two vertices and for splits.
+#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -88,15 +90,14 @@ Vec3d close_at_corner(const CornerSide (&side)[2], const Vec3d& c, double edge) 
   if (!(std::abs(dot(a.n, b.n)) < min_cos) || !(spread > 0) || spread < kCornerMinGap * edge) {
     return c;
   }
-  // Least squares over the planes, relative to c: (sum n n^T + pull I) d = sum n (n . (q - c)).
-  double m[3][3] = {{kCornerPull, 0, 0}, {0, kCornerPull, 0}, {0, 0, kCornerPull}};
-  double r[3] = {0, 0, 0};
+  // Least squares over the planes, relative to c: (sum n n^T + pull I) d = sum n (n . (q - c)),
+  // symmetric positive definite by the pull.
+  Eigen::Matrix3d m = kCornerPull * Eigen::Matrix3d::Identity();
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();
   const auto add_plane = [&](const Vec3d& n, const Vec3d& q) {
-    const double h = dot(n, q - c);
-    for (int x = 0; x < 3; ++x) {
-      r[x] += n[x] * h;
-      for (int y = 0; y < 3; ++y) m[x][y] += n[x] * n[y];
-    }
+    const Eigen::Vector3d e(n.x, n.y, n.z);
+    m += e * e.transpose();
+    r += dot(n, q - c) * e;
   };
   add_plane(a.n, a.p);
   add_plane(b.n, b.p);
@@ -110,21 +111,10 @@ Vec3d close_at_corner(const CornerSide (&side)[2], const Vec3d& c, double edge) 
     if (std::min(c0, c1) >= kAlongKnuckleCos) continue;
     add_plane(normalized(cross(c0 < c1 ? s->along[0] : s->along[1], s->n)), s->p);
   }
-  const auto det3 = [](const double q[3][3]) {
-    return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) -
-           q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
-           q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
-  };
-  const double det = det3(m);
-  if (!(det > 0)) return c;
-  Vec3d d;
-  for (int k = 0; k < 3; ++k) {
-    double q[3][3];
-    for (int x = 0; x < 3; ++x) {
-      for (int y = 0; y < 3; ++y) q[x][y] = y == k ? r[x] : m[x][y];
-    }
-    d[k] = det3(q) / det;
-  }
+  const Eigen::LLT<Eigen::Matrix3d> llt(m);
+  if (llt.info() != Eigen::Success) return c;
+  const Eigen::Vector3d x = llt.solve(r);
+  const Vec3d d{x(0), x(1), x(2)};
   if (!is_finite(d) || !(norm(d) <= kCornerReach * spread) || norm(d) < kCornerMinMove * edge) {
     return c;
   }

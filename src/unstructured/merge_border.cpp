@@ -145,12 +145,17 @@ std::vector<Vec3d> vertex_inward(const SurfaceMesh& m, const Border& b,
   return in;
 }
 
-Vec3d edge_inward(const SurfaceMesh& m, const BorderEdge& e) {
+Index edge_apex(const SurfaceMesh& m, const BorderEdge& e) {
   const Face& f = m.faces[e.face];
   Index apex = f[0];
   for (int c = 0; c < 3; ++c) {
     if (f[c] != e.v0 && f[c] != e.v1) apex = f[c];
   }
+  return apex;
+}
+
+Vec3d edge_inward(const SurfaceMesh& m, const BorderEdge& e) {
+  const Index apex = edge_apex(m, e);
   const Vec3d a = m.positions[e.v0], d = m.positions[e.v1] - a;
   Vec3d in = m.positions[apex] - a;
   const double dd = dot(d, d);

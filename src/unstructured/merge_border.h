@@ -92,6 +92,8 @@ class SegmentGrid {
 // Unit direction into the face across border edge e, perpendicular to the edge (zero when the
 // face is degenerate).
 Vec3d edge_inward(const SurfaceMesh& m, const BorderEdge& e);
+// The corner of the edge's face off the edge.
+Index edge_apex(const SurfaceMesh& m, const BorderEdge& e);
 
 // Per border vertex (b.vertices order): the mean inward direction of its border edges (unit, or
 // zero). local maps a mesh vertex to its border index.

@@ -496,29 +496,32 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
   // Faces at each border vertex (count -> scan -> scatter), to test a corner against: a vertex
   // taken to the corner while its neighbours stay (receded, unpaired) may turn a face over (the
   // property test's seed 2143 in wide mode: a full chine hull's keel restored 0.03 m down at the
-  // stem, under the slivers beside it).
-  std::vector<Index> face_start(nb + 1, 0);
-  for (const Face& f : m.faces) {
-    for (int k = 0; k < 3; ++k) {
-      if (local[f[k]] != kInvalid) ++face_start[local[f[k]] + 1];
+  // stem, under the slivers beside it). Built at the first corner: most snaps have none.
+  std::vector<Index> face_start, faces_of;
+  const auto index_faces = [&] {
+    if (!face_start.empty()) return;
+    face_start.assign(nb + 1, 0);
+    for (const Face& f : m.faces) {
+      for (int k = 0; k < 3; ++k) {
+        if (local[f[k]] != kInvalid) ++face_start[local[f[k]] + 1];
+      }
     }
-  }
-  for (std::size_t i = 0; i < nb; ++i) face_start[i + 1] += face_start[i];
-  std::vector<Index> faces_of(face_start[nb]);
-  {
+    for (std::size_t i = 0; i < nb; ++i) face_start[i + 1] += face_start[i];
+    faces_of.resize(face_start[nb]);
     std::vector<Index> fill(face_start.begin(), face_start.end() - 1);
     for (std::size_t f = 0; f < m.faces.size(); ++f) {
       for (int k = 0; k < 3; ++k) {
         if (local[m.faces[f][k]] != kInvalid) faces_of[fill[local[m.faces[f][k]]]++] = Index(f);
       }
     }
-  }
+  };
   const auto points_before = [&](Index v) {
     return local[v] != kInvalid ? points[local[v]] : m.positions[v];
   };
   // True when no face at border vertex i turns by 90 degrees or more with i at x (the other
   // corners where they were before the snap).
   const auto keeps_facing = [&](Index i, const Vec3d& x) {
+    index_faces();
     const Index v = b.vertices[i];
     for (Index k = face_start[i]; k < face_start[i + 1]; ++k) {
       const Face& f = m.faces[faces_of[k]];
@@ -548,7 +551,8 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     }
     const double edge = std::min(b.edge_length[i], b.edge_length[j]);
     const Vec3d x = close_at_corner({sides[i], sides[j]}, mean, edge);
-    m.positions[b.vertices[i]] = keeps_facing(Index(i), x) && keeps_facing(j, x) ? x : mean;
+    m.positions[b.vertices[i]] =
+        x != mean && keeps_facing(Index(i), x) && keeps_facing(j, x) ? x : mean;
   }
   // Split vertices that joined no cluster move halfway across the gap (each side gives half), or
   // to the corner the two sides make.
@@ -559,29 +563,24 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     const BorderEdge& e = b.edges[s.edge];
     const Vec3d e0 = m.positions[e.v0], e1 = m.positions[e.v1];
     const Vec3d on_edge = e0 + s.t * (e1 - e0);
-    if (!faces_only(local[e.v0], group[i]) || !faces_only(local[e.v1], group[i])) {
-      m.positions[b.vertices[i]] = 0.5 * (points[i] + on_edge);
-      continue;
-    }
-    // The edge's side: its face's plane, and its border running on both ways along the edge.
-    CornerSide across{on_edge,
-                      face_normal(m.positions, m.faces[e.face]),
-                      edge_inward(m, e),
-                      {normalized(e0 - on_edge), normalized(e1 - on_edge)}};
-    const double edge = std::min(b.edge_length[i], norm(e1 - e0));
     const Vec3d mid = 0.5 * (points[i] + on_edge);
+    m.positions[b.vertices[i]] = mid;
+    if (!faces_only(local[e.v0], group[i]) || !faces_only(local[e.v1], group[i])) continue;
+    // The edge's side: its face's plane, and its border running on both ways along the edge.
+    const CornerSide across{on_edge,
+                            face_normal(m.positions, m.faces[e.face]),
+                            edge_inward(m, e),
+                            {normalized(e0 - on_edge), normalized(e1 - on_edge)}};
+    const double edge = std::min(b.edge_length[i], norm(e1 - e0));
     const Vec3d x = close_at_corner({sides[i], across}, mid, edge);
+    if (x == mid) continue;
     // The edge's face becomes a fan from its third corner through x: both pieces keep facing.
-    const Face& f = m.faces[e.face];
-    Index apex = f[0];
-    for (int c = 0; c < 3; ++c) {
-      if (f[c] != e.v0 && f[c] != e.v1) apex = f[c];
-    }
-    const Vec3d pa = m.positions[apex];
+    const Vec3d pa = m.positions[edge_apex(m, e)];
     const Vec3d was = cross(e1 - e0, pa - e0);
-    const bool fan_keeps =
-        dot(cross(x - e0, pa - e0), was) > 0 && dot(cross(e1 - x, pa - x), was) > 0;
-    m.positions[b.vertices[i]] = fan_keeps && keeps_facing(Index(i), x) ? x : mid;
+    if (dot(cross(x - e0, pa - e0), was) > 0 && dot(cross(e1 - x, pa - x), was) > 0 &&
+        keeps_facing(Index(i), x)) {
+      m.positions[b.vertices[i]] = x;
+    }
   }
   {
     std::vector<Vec3d> moved_to(nb);
