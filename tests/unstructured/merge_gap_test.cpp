@@ -56,7 +56,9 @@ TEST(MergeGaps, ASlitOpeningOntoTheOutlineIsSnappedAtItsMeasuredWidth) {
 // Full round-bilge 24 with 0.1 m gaps and 5% overlaps: the halves stand 0.1 m apart at the stem,
 // a slit 2.6 m high bent like a C (its fan from the centroid measured 0.43 m wide, so it was not
 // zipped; the zipper's own faces measure 0.1 m), and at the transom the gap opens onto the deck
-// edge, a notch 0.1 m wide and 0.2 m deep. Both close; the boundary is the deck edge alone.
+// edge, a notch 0.1 m wide and 0.2 m deep. Both close; the boundary is the deck edge alone. (The
+// zipper closed both until 2026-12-06; since then the snap welds the halves across them, each
+// half moving onto the centre plane.)
 TEST(MergeGaps, BentSlitAndNotchAtTheDeckOfAFullHullClose) {
   HullDefects d;
   d.gap = 0.1;
@@ -72,7 +74,6 @@ TEST(MergeGaps, BentSlitAndNotchAtTheDeckOfAFullHullClose) {
   EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
   EXPECT_TRUE(m.adj.inconsistent_edges.empty());
   EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
-  EXPECT_GE(m.merged.report.gaps_bridged, 2u);
   EXPECT_NEAR(boundary_length(m) / boundary_length(ref), 1.0, 5e-3);  // 227 m before, 219 m
 }
 
@@ -262,4 +263,61 @@ TEST(MergeGaps, AFineStemsTopCornersWeldAcrossAGap) {
 }
 
 }  // namespace
+// The full round-bilge hull of 24 patches with 0.1 m gaps: where the stem curves into the keel
+// (the forefoot, x = 100-102 m) its borders are refined to edges shorter than the gap, so the
+// halves' vertices there, 0.08-0.09 m apart across the centre plane, lay beyond the tolerance
+// (half an edge, 0.06 m); the hole filler closed the slit between them and the stem line broke
+// into four pieces. At x = 36.4 m four patches meet on the keel with gaps both ways, and the
+// shorter diagonal of the hole there ran across the keel: the keel was found forward of it only.
+// 5 lines, 90.0 m, where the clean hull has 3 of 127.4 m. The halves now weld where each moves
+// within its tolerance onto the centre plane.
+TEST(MergeGaps, TheHalvesOfAFullHullWeldAcrossAGapWiderThanTheirEdges) {
+  const Merged m = merge_of(generate_hull(with_gaps(HullKind::kRoundBilge, 24, true, 0.1)).patches);
+  const Merged ref = merge_of(generate_hull(with_gaps(HullKind::kRoundBilge, 24, true, 0)).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  const FeatureSet f = features_of(m), f_ref = features_of(ref);
+  ASSERT_EQ(f_ref.knuckles.size(), 3u);  // the keel and stem, and the transom's two edges
+  EXPECT_EQ(f.knuckles.size(), 3u);
+  // The gap takes up to 0.1 m off the stem's top and the transom's ends.
+  EXPECT_NEAR(f.knuckle_length(), f_ref.knuckle_length(), 0.5);
+}
+
+// The full round-bilge hull of 100 patches with 0.1 m gaps: where a knuckle runs through a
+// junction of patches with gaps both ways, the hole left there is a small cross of slits, with
+// corners on the line and off it to either side. Closed shortest diagonal first, its faces ran
+// across the keel and bent over it, and the keel broke there: 5 lines where the clean hull has
+// 3. The hole's faces now lie in the planes of the faces beside them, and the keel runs through.
+TEST(MergeGaps, AHoleOnAKnuckleIsClosedAlongIt) {
+  const Merged m =
+      merge_of(generate_hull(with_gaps(HullKind::kRoundBilge, 100, true, 0.1)).patches);
+  const Merged ref =
+      merge_of(generate_hull(with_gaps(HullKind::kRoundBilge, 100, true, 0)).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  const FeatureSet f = features_of(m), f_ref = features_of(ref);
+  ASSERT_EQ(f_ref.knuckles.size(), 3u);
+  EXPECT_EQ(f.knuckles.size(), 3u);
+  EXPECT_NEAR(f.knuckle_length(), f_ref.knuckle_length(), 0.5);
+}
+
+// The full Wigley of 24 patches with every defect, at 40,000 triangles: where the stem and the
+// stern post run into the flat keel (x = 8 and 92 m) the gaps leave slits across the knuckle,
+// which the hole filler closed by ears, shortest diagonal first, across it; each end of the keel
+// became a knot of three short lines (8 lines where the clean hull has 1). The ears are now
+// taken among those whose faces lie in the planes of the faces beside them.
+TEST(MergeGaps, SlitsAcrossAKnuckleCloseAlongIt) {
+  HullSpec spec = with_gaps(HullKind::kWigley, 24, true, 0.1);
+  spec.defects.overlap = 0.05;
+  spec.defects.duplicate_points = true;
+  spec.defects.flip_every = 3;
+  const std::vector<Patch> patches = generate_hull(spec).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 40000));
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  const FeatureSet f = features_of(m);
+  EXPECT_EQ(f.knuckles.size(), 1u);  // the stem, the keel and the stern post
+}
+
 }  // namespace hm::test
