@@ -75,6 +75,8 @@ constexpr double kGridMedianEdges = 2;
 // distance from its border and heads into it within 60 degrees.
 constexpr double kBetweenShare = 0.5;
 constexpr double kIntoCos = 0.5;
+// The way between two border vertices runs along their surfaces' normals within 45 degrees.
+constexpr double kThroughCos = 0.7;
 // A border vertex lies on the way another vertex of its border moved when it is within this
 // share of the move from the straight line the move took (see collapse_overrun).
 constexpr double kOnMove = 1e-3;
@@ -262,6 +264,33 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     return dot(ij, edge_inward(m, b.edges[si.edge])) > kIntoCos * d &&
            dot(-ij, edge_inward(m, b.edges[sj.edge])) > kIntoCos * d;
   };
+  // Per border vertex, its surface's normal (up to sign: patches may arrive flipped), from the
+  // faces along its border edges.
+  std::vector<Vec3d> normal(nb, Vec3d{});
+  for (const BorderEdge& e : b.edges) {
+    const Vec3d n = normalized(face_normal(m.positions, m.faces[e.face]));
+    if (!is_finite(n)) continue;
+    normal[local[e.v0]] += n;
+    normal[local[e.v1]] += n;
+  }
+  // True when the way between border vertices i and j runs through the hull's thickness: along
+  // both their surfaces' normals (within 45 degrees), over more than kEndFraction of their border
+  // edges (a step between two patches that continue each other is a chord error, far less). A
+  // full Wigley of 100 patches is 0.17 m thick near its forefoot (x = 4 m), where a seam between
+  // two patches crosses each side; each side's seam vertices welded to the other side's across
+  // the thickness (inward directions opposite, as of two borders that continue each other), and
+  // the forefoot was pinched onto the centre plane: 9 knuckle lines of 118.3 m on the clean
+  // hull, where its stem, keel and stern post make 1 of 115.6.
+  const auto through_thickness = [&](Index i, Index j) {
+    const Vec3d ij = points[j] - points[i];
+    const double d = norm(ij);
+    if (!(d > kEndFraction * std::min(b.edge_length[i], b.edge_length[j]))) return false;
+    const auto along = [&](Index k) {
+      const double n = norm(normal[k]);
+      return n > 0 && std::abs(dot(ij, normal[k])) >= kThroughCos * d * n;
+    };
+    return along(i) && along(j);
+  };
   // True when border vertices i and j are the two halves of a full hull, each within its
   // tolerance of the centre plane, leaving it to either side at least kWedgeMin apart, the one
   // across the wedge from the other (as nearest_edges lets an edge through the fold test): a fine
@@ -320,7 +349,8 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       // on the strip's border, not on the other's.
       if (!coincident && across_third_patch(p.a, p.b)) continue;
       if (p.distance <= limit &&
-          (coincident || touching || wedge || dot(inward[p.a], inward[p.b]) <= kFoldCos)) {
+          (coincident || touching || wedge ||
+           (dot(inward[p.a], inward[p.b]) <= kFoldCos && !through_thickness(p.a, p.b)))) {
         pairs.push_back(p);
       }
     }

@@ -320,4 +320,25 @@ TEST(MergeGaps, SlitsAcrossAKnuckleCloseAlongIt) {
   EXPECT_EQ(f.knuckles.size(), 1u);  // the stem, the keel and the stern post
 }
 
+// The clean full Wigley of 100 patches is 0.17 m thick near its forefoot (x = 4 m), where a seam
+// between two patches crosses each side. Each side's seam vertices welded to the other side's
+// across that thickness (their inward directions opposite, as of two borders that continue each
+// other), and the forefoot was pinched onto the centre plane: 9 knuckle lines of 118.3 m, where
+// the stem, the keel and the stern post make one line of 115.6 m. A weld no longer runs through
+// the hull's thickness, along both vertices' surface normals.
+TEST(MergeGaps, NoWeldRunsThroughAThinHull) {
+  const Merged m = merge_of(generate_hull(with_gaps(HullKind::kWigley, 100, true, 0)).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  const FeatureSet f = features_of(m);
+  EXPECT_EQ(f.knuckles.size(), 1u);
+  EXPECT_NEAR(f.knuckle_length(), 115.6, 0.6);
+  // No vertex off the keel and the stem lies in the centre plane.
+  std::size_t pinched = 0;
+  for (const Vec3d& p : m.merged.mesh.positions) {
+    pinched += std::abs(p.y) < 1e-9 && p.z > 0.2 && p.z < 3.5 && p.x > 3.5 && p.x < 96.5;
+  }
+  EXPECT_EQ(pinched, 0u);
+}
+
 }  // namespace hm::test
