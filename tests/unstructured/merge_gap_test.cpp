@@ -341,4 +341,19 @@ TEST(MergeGaps, NoWeldRunsThroughAThinHull) {
   EXPECT_EQ(pinched, 0u);
 }
 
+// The clean half round-bilge hull of 300 patches, at the default size: at three patch corners of
+// its bow (x = 86-90 m) the snap left a hole of three vertices along a seam, its middle vertex
+// 1.4e-3 of the long side off the line (flat holes are split up to 1e-3). Its triangle stood
+// across the hull, 90-100 degrees off the faces beside it, and three false knuckle lines of
+// 0.4-0.7 m ran along those slivers: 4 lines of 9.1 m where the transom's edge is 1 of 7.45 m.
+// Such a hole is now split as flat up to 1e-2.
+TEST(MergeGaps, ATriangleStandingAcrossTheHullIsNoFill) {
+  const Merged m = merge_of(generate_hull(with_gaps(HullKind::kRoundBilge, 300, false, 0)).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  const FeatureSet f = features_of(m);
+  EXPECT_EQ(f.knuckles.size(), 1u);
+  EXPECT_NEAR(f.knuckle_length(), 7.445, 0.01);
+}
+
 }  // namespace hm::test
