@@ -172,7 +172,10 @@ TEST(Merge, FansFoldedOverABorderAreFlippedAndMakeNoKnuckle) {
 // at 24,000 triangles. Where a starboard overlap's seam meets the keel at x = 24.3 m, a port face
 // had a starboard vertex 0.55 m up the side as its third corner and lay over the starboard
 // faces upside down; the merged surface passed through itself 4 times (and the panels of the
-// unstructured mesher once). The flap is welded away.
+// unstructured mesher once). The flap was welded away (weld_folds); since 2026-12-06 the snap no
+// longer makes the weld that laid it (a vertex on another patch's border is not welded to one
+// off that border, across that patch), and this hull has no flap left to weld. The test keeps
+// the outcome.
 TEST(Merge, AFlapOverTheKeelWhereAnOverlapSeamMeetsItIsWelded) {
   HullSpec spec = hull_spec(HullKind::kWigley, 154.197, 14.9945, 6.07016, 8.12596, 13, true);
   spec.defects.seed = 4140;
@@ -180,7 +183,6 @@ TEST(Merge, AFlapOverTheKeelWhereAnOverlapSeamMeetsItIsWelded) {
   spec.defects.overlap = 0.05;
   const std::vector<Patch> patches = generate_hull(spec).patches;
   const Merged m = merge_of(patches, edge_length_for_triangles(patches, 24'000));
-  EXPECT_GE(m.merged.report.folds_welded, 1u);
   EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
   EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
   const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);

@@ -356,4 +356,21 @@ TEST(MergeGaps, ATriangleStandingAcrossTheHullIsNoFill) {
   EXPECT_NEAR(f.knuckle_length(), 7.445, 0.01);
 }
 
+// The clean full round-bilge hull of 300 patches has a transom strip 0.1-0.14 m tall along the
+// transom's foot. A vertex of the transom patch above it, on the strip's upper border, welded to
+// the bottom's corner 0.11 m below it, across the strip: each lay on the border of a different
+// patch, so the strip was no third patch between them. The strip's faces then passed through the
+// transom's (4 pairs), and the transom's edge became a knot of short lines on each side: 17
+// lines where the hull has 3. A vertex on another patch's border no longer welds to one off
+// that border, across that patch.
+TEST(MergeGaps, AVertexOnAStripsBorderIsNotWeldedAcrossTheStrip) {
+  const Merged m = merge_of(generate_hull(with_gaps(HullKind::kRoundBilge, 300, true, 0)).patches);
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  EXPECT_EQ(find_self_intersections(m.merged.mesh, 1e-9 * 100).count, 0u);
+  const FeatureSet f = features_of(m);
+  EXPECT_EQ(f.knuckles.size(), 3u);
+  EXPECT_NEAR(f.knuckle_length(), 127.4, 0.1);
+}
+
 }  // namespace hm::test

@@ -55,13 +55,14 @@ TEST(Merge, ManySmallPatchesMeetAtTheCentrePlaneWithoutAThirdFace) {
 // Two patches whose borders come within tolerance of each other across the tip of a third,
 // narrower there than the tolerance, welded straight across it, and the tip lay on their seam
 // with a third face on one edge (kcs.iges at 40,000 triangles: patch 53's tip between patches
-// 10 and 21 on the flat side; the generated 300-patch chine hull likewise). The snap is tried
-// again with a smaller tolerance there.
+// 10 and 21 on the flat side; the generated 300-patch chine hull likewise). The snap was tried
+// again with a smaller tolerance there; since 2026-12-06 a vertex on the tip's border is not
+// welded to one across the tip in the first place, and neither merge needs the retry (the
+// retry's own test is Merge.FoldedHoleIsSnappedAgainAndCloses below, which still does).
 TEST(Merge, ThirdPatchTipBetweenTwoCloseBordersGetsNoThirdFace) {
   const std::vector<Patch> patches = generated(HullKind::kChine, 300).patches;
   const Merged chine = merge_of(patches, edge_length_for_triangles(patches, 40000));
   expect_clean_half_hull(chine, "chine, 300 patches");
-  EXPECT_GE(chine.merged.report.snap_retries, 1u);
   HM_REQUIRE_SHARED_HULL(path, "kcs.iges");
   const ImportResult hull = read_iges_file(path.string());
   expect_clean_half_hull(merge_of(hull.patches, edge_length_for_triangles(hull.patches, 40000)),
