@@ -77,6 +77,8 @@ constexpr double kBetweenShare = 0.5;
 constexpr double kIntoCos = 0.5;
 // The way between two border vertices runs along their surfaces' normals within 45 degrees.
 constexpr double kThroughCos = 0.7;
+// A way through a hull that long (share of the hull's length) is its thickness, not a step.
+constexpr double kThickness = 1e-3;
 // A border vertex lies on another patch's border when within this share of a pair's distance.
 constexpr double kHeldShare = 0.1;
 // A border vertex lies on the way another vertex of its border moved when it is within this
@@ -296,16 +298,21 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
   }
   // True when the way between border vertices i and j runs through the hull's thickness: along
   // both their surfaces' normals (within 45 degrees), over more than kEndFraction of their border
-  // edges (a step between two patches that continue each other is a chord error, far less). A
+  // edges or kThickness of the hull's length (a step between two patches that continue each
+  // other is a chord error, far less: kcs.iges's, 1.9 mm across, is 2.5e-4 L). A
   // full Wigley of 100 patches is 0.17 m thick near its forefoot (x = 4 m), where a seam between
   // two patches crosses each side; each side's seam vertices welded to the other side's across
   // the thickness (inward directions opposite, as of two borders that continue each other), and
   // the forefoot was pinched onto the centre plane: 9 knuckle lines of 118.3 m on the clean
-  // hull, where its stem, keel and stern post make 1 of 115.6.
+  // hull, where its stem, keel and stern post make 1 of 115.6. At 300 patches its stem is 0.19 m
+  // thick at the seams, under 0.3 of their border edges of 0.9 m (5 lines, where it has 1).
   const auto through_thickness = [&](Index i, Index j) {
     const Vec3d ij = points[j] - points[i];
     const double d = norm(ij);
-    if (!(d > kEndFraction * std::min(b.edge_length[i], b.edge_length[j]))) return false;
+    if (!(d > std::min(kEndFraction * std::min(b.edge_length[i], b.edge_length[j]),
+                       kThickness * length))) {
+      return false;
+    }
     const auto along = [&](Index k) {
       const double n = norm(normal[k]);
       return n > 0 && std::abs(dot(ij, normal[k])) >= kThroughCos * d * n;
