@@ -190,6 +190,58 @@ void collapse_overrun(const Border& b, std::span<const Vec3d> before,
   for (std::size_t k = 0; k < nb; ++k) into[k] = find(Index(k));
 }
 
+// A welded vertex takes along a short row of its own border that nothing else pairs: where a
+// patch's border has a corner collapsed to a point in the clean hull (the chines, keel and stem
+// of a chine hull meeting at the bow), a gap opens that point into a row of short border edges
+// (0.05 m of 10 vertices, each edge 5 mm, so each vertex's tolerance a few millimetres). The
+// row's end at the keel welded to the other half's, the rest stayed, and the hole filler closed
+// the slit between the two rows with faces square to the hull: a knot of 6 short knuckle lines
+// at the bow of the generated full chine hull of 2 patches with 0.1 m gaps. Walks each welded
+// vertex's border both ways over vertices that are not welded, not split into an edge and have
+// no other patch's border within their tolerance, up to the first that is not such; when that
+// one is not welded either, at least two lay between, and the row is no longer than the welded
+// vertex's tolerance, the row and its end join the welded vertex. Serial, in border order.
+void collapse_short_rows(const Border& b, std::span<const Vec3d> before,
+                         std::span<const Index> local, std::span<const std::uint8_t> welded,
+                         std::span<const std::uint8_t> free, std::span<const double> tol,
+                         std::vector<Index>& into) {
+  const std::size_t nb = b.vertices.size();
+  std::vector<std::array<Index, 2>> next(nb, {kInvalid, kInvalid});
+  std::vector<std::uint8_t> degree(nb, 0);
+  for (const BorderEdge& e : b.edges) {
+    const Index u = local[e.v0], v = local[e.v1];
+    if (degree[u] < 2) next[u][degree[u]] = v;
+    if (degree[v] < 2) next[v][degree[v]] = u;
+    ++degree[u];
+    ++degree[v];
+  }
+  std::vector<Index> row;
+  for (std::size_t k = 0; k < nb; ++k) {
+    const Index i = Index(k);
+    if (!welded[i] || degree[i] > 2) continue;
+    for (Index start : next[i]) {
+      row.clear();
+      double along = 0;
+      Index prev = i, cur = start;
+      while (cur != kInvalid && degree[cur] <= 2 && free[cur] && along <= tol[i]) {
+        along += norm(before[cur] - before[prev]);
+        row.push_back(cur);
+        const Index after = next[cur][0] == prev ? next[cur][1] : next[cur][0];
+        prev = cur;
+        cur = after;
+      }
+      if (cur == kInvalid || cur == i || degree[cur] > 2 || welded[cur] || free[cur]) continue;
+      along += norm(before[cur] - before[prev]);
+      if (row.size() < 2 || !(along <= tol[i]) || into[cur] != cur) continue;
+      row.push_back(cur);
+      bool taken = false;
+      for (Index r : row) taken = taken || into[r] != r;
+      if (taken) continue;
+      for (Index r : row) into[r] = into[i];
+    }
+  }
+}
+
 SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, double length,
                        std::span<const double> tol_scale) {
   SurfaceMesh& m = w.mesh;
@@ -457,6 +509,12 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     for (std::size_t i = 0; i < nb; ++i) moved_to[i] = m.positions[b.vertices[rep[i]]];
     std::vector<Index> into(rep.begin(), rep.end());
     collapse_overrun(b, points, moved_to, local, is_inserted, closed_floor, into);
+    std::vector<std::uint8_t> welded(nb), free(nb);
+    for (std::size_t i = 0; i < nb; ++i) {
+      welded[i] = count[rep[i]] > 1;
+      free[i] = !welded[i] && !is_inserted[i] && near[i].edge == kInvalid;
+    }
+    collapse_short_rows(b, points, local, welded, free, tol, into);
     for (std::size_t i = 0; i < nb; ++i) vert_rep[b.vertices[i]] = b.vertices[into[i]];
   }
   for (Face& f : m.faces) {

@@ -384,7 +384,9 @@ TEST(CliMerge, Ship449OutlineHasNoHoleAndNoOpenGap) {
 // DTMB 5415 at the structured mesher's fine size for 2,000 panels: by the skeg (x = -2.01 m,
 // 1 mm off the centre plane) a slit's closing fan of patch 1 lay folded over patch 0's border,
 // one of its triangles through a patch 0 face, and every structured run there warned that the
-// surface passes through itself. The fan is flipped flat, and the report counts the crossings.
+// surface passes through itself. The fan was flipped flat (flip_folded_flaps); since 2026-12-06
+// the short row of patch 1's border there (1 mm, 5 vertices) joins its welded end instead, and
+// no fan folds. The report counts the crossings.
 TEST(CliMerge, Dtmb5415SkegFanIsFlippedAndNoFacesCross) {
   const fs::path hull = test::shared_hull("dtmb5415.iges");
   if (hull.empty()) GTEST_SKIP() << "shared hulls not present";
@@ -393,7 +395,6 @@ TEST(CliMerge, Dtmb5415SkegFanIsFlippedAndNoFacesCross) {
     const auto r =
         test::run_hullmesh("merge '" + hull.string() + "' -o '" + vtu.string() + "'" + size);
     ASSERT_EQ(r.exit_code, 0) << r.out;
-    EXPECT_NE(r.out.find("folded triangles flipped flat"), std::string::npos) << size << r.out;
     EXPECT_NE(r.out.find("0 inconsistent edges, 0 pairs of faces through each other"),
               std::string::npos)
         << size << r.out;

@@ -383,4 +383,24 @@ TEST(MergeGaps, AVertexOnAStripsBorderIsNotWeldedAcrossTheStrip) {
   EXPECT_NEAR(f.knuckle_length(), 127.4, 0.1);
 }
 
+// The full chine hull of 2 patches (its halves) with 0.1 m gaps, at 40,000 triangles: where the
+// chines, the keel and the stem meet at the bow (one point of each half's border in the clean
+// hull), the gap opens that point into a row of border edges of 5 mm, 0.05 m in all, whose
+// vertices have tolerances of a few millimetres. Only the row's end at the keel welded to the
+// other half's; the slit between the two rows was closed by faces square to the hull, a knot of
+// short knuckle lines: 17 lines where the clean hull has 8. The row now joins its welded end.
+TEST(MergeGaps, AShortRowAGapOpensAtTheBowJoinsItsWeld) {
+  const std::vector<Patch> broken =
+      generate_hull(with_gaps(HullKind::kChine, 2, true, 0.1)).patches;
+  const std::vector<Patch> clean = generate_hull(with_gaps(HullKind::kChine, 2, true, 0)).patches;
+  const Merged m = merge_of(broken, edge_length_for_triangles(broken, 40000));
+  const Merged ref = merge_of(clean, edge_length_for_triangles(clean, 40000));
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  const FeatureSet f = features_of(m), f_ref = features_of(ref);
+  ASSERT_EQ(f_ref.knuckles.size(), 8u);
+  EXPECT_EQ(f.knuckles.size(), 8u);
+  EXPECT_NEAR(f.knuckle_length(), f_ref.knuckle_length(), 1.0);
+}
+
 }  // namespace hm::test
