@@ -509,10 +509,16 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     for (std::size_t i = 0; i < nb; ++i) moved_to[i] = m.positions[b.vertices[rep[i]]];
     std::vector<Index> into(rep.begin(), rep.end());
     collapse_overrun(b, points, moved_to, local, is_inserted, closed_floor, into);
-    std::vector<std::uint8_t> welded(nb), free(nb);
+    // Free: not welded, not split into an edge, no edge of its split into (a row must not
+    // collapse an edge that a split is about to cut) and no other patch's border near.
+    std::vector<std::uint8_t> welded(nb), free(nb, 1);
+    for (const Insert& in : inserts) {
+      free[local[b.edges[in.edge].v0]] = 0;
+      free[local[b.edges[in.edge].v1]] = 0;
+    }
     for (std::size_t i = 0; i < nb; ++i) {
       welded[i] = count[rep[i]] > 1;
-      free[i] = !welded[i] && !is_inserted[i] && near[i].edge == kInvalid;
+      free[i] = free[i] && !welded[i] && !is_inserted[i] && near[i].edge == kInvalid;
     }
     collapse_short_rows(b, points, local, welded, free, tol, into);
     for (std::size_t i = 0; i < nb; ++i) vert_rep[b.vertices[i]] = b.vertices[into[i]];
