@@ -105,7 +105,13 @@ std::vector<ClosePair> weld_pairs(const SurfaceMesh& m, const Border& b, const B
   // tolerance of the centre plane, leaving it to either side at least kWedgeMin apart, the one
   // across the wedge from the other (as nearest_edges lets an edge through the fold test): a fine
   // stem's top corners at the deck, a gap apart, whose borders turn there into the deck edge so
-  // that no edge of the other lies across.
+  // that no edge of the other lies across. Where the two leave the plane less than kWedgeMin
+  // apart, back to back as a fin (a Wigley's stern post near the keel), the wedge gives no
+  // direction and the way between them must cross the plane instead (within 45 degrees of y):
+  // the full Wigley of 6 patches with 0.1 m gaps left its halves 0.016-0.023 m apart there
+  // (edges of 0.24 m, so no touching pair either), and the slit's fill made a second line. Such
+  // a pair must not lie through the hull's thickness: a Wigley's two deck edges near the stem,
+  // 0.39 m apart, leave the plane back to back too, and welding them pinched the deck.
   const auto across_wedge = [&](Index i, Index j) {
     if (!(std::abs(points[i].y) <= tol[i] && std::abs(points[j].y) <= tol[j])) return false;
     if (!(inward[i].y * inward[j].y < 0)) return false;
@@ -117,7 +123,9 @@ std::vector<ClosePair> weld_pairs(const SurfaceMesh& m, const Border& b, const B
     const auto clear = [&](Index k) {
       return near[k].edge == kInvalid || near[k].distance >= 0.5 * d;
     };
-    return w >= kWedgeMin && clear(i) && clear(j) && dot(across, wedge) >= kAcrossCos * d * w;
+    if (!clear(i) || !clear(j)) return false;
+    if (w >= kWedgeMin) return dot(across, wedge) >= kAcrossCos * d * w;
+    return std::abs(across.y) >= kAcrossCos * d && !through_thickness(i, j);
   };
   if (nb > 1 && reach > 0) {
     const std::vector<ClosePair> close = find_close_pairs(points, group, reach);

@@ -403,4 +403,29 @@ TEST(MergeGaps, AShortRowAGapOpensAtTheBowJoinsItsWeld) {
   EXPECT_NEAR(f.knuckle_length(), f_ref.knuckle_length(), 1.0);
 }
 
+// The full Wigley of 6 patches with 0.1 m gaps, at 40,000 triangles: near the keel the stern post
+// is a fin, its halves back to back less than 5 degrees apart and, with the gap, 0.016-0.023 m
+// apart across the centre plane, over border edges of 0.24 m. Neither the wedge rule (which needs
+// 5 degrees) nor the touching rule (5% of an edge) paired them, and the slit's fill made a second
+// line of 0.24 m beside the stern post. They now weld as mirror images across the plane.
+TEST(MergeGaps, AFinsHalvesAGapApartWeldAcrossTheCentrePlane) {
+  const std::vector<Patch> patches =
+      generate_hull(with_gaps(HullKind::kWigley, 6, true, 0.1)).patches;
+  const Merged m = merge_of(patches, edge_length_for_triangles(patches, 40000));
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);  // the deck edge
+  const FeatureSet f = features_of(m);
+  EXPECT_EQ(f.knuckles.size(), 1u);
+  // A clean Wigley's two deck edges near the stem leave the plane back to back too, 0.39 m apart
+  // through the hull: they stay apart, and the line still ends at the stem's and stern's tops.
+  const Merged clean = merge_of(generate_hull(with_gaps(HullKind::kWigley, 2, true, 0)).patches);
+  const FeatureSet fc = features_of(clean);
+  ASSERT_EQ(fc.knuckles.size(), 1u);
+  const std::vector<Index>& line = fc.knuckles[0].vertices;
+  const Vec3d a = clean.merged.mesh.positions[line.front()];
+  const Vec3d z = clean.merged.mesh.positions[line.back()];
+  EXPECT_LT(std::min(a.x, z.x), 0.01);
+  EXPECT_GT(std::max(a.x, z.x), 99.99);
+}
+
 }  // namespace hm::test
