@@ -135,6 +135,28 @@ double vertex_tolerance(const MergeOptions& options, double border_edge_length) 
   return options.gap_tolerance > 0 ? options.gap_tolerance : 0.5 * border_edge_length;
 }
 
+// Each border vertex's neighbours along its own patch's border (border edges join vertices of
+// one patch; up to two kept) and how many border edges meet there (more than two where the
+// border touches itself).
+struct OwnBorder {
+  std::vector<std::array<Index, 2>> next;
+  std::vector<std::uint8_t> degree;
+};
+
+OwnBorder own_border(const Border& b, std::span<const Index> local) {
+  const std::size_t nb = b.vertices.size();
+  OwnBorder o{std::vector<std::array<Index, 2>>(nb, {kInvalid, kInvalid}),
+              std::vector<std::uint8_t>(nb, 0)};
+  for (const BorderEdge& e : b.edges) {
+    const Index u = local[e.v0], v = local[e.v1];
+    if (o.degree[u] < 2) o.next[u][o.degree[u]] = v;
+    if (o.degree[v] < 2) o.next[v][o.degree[v]] = u;
+    ++o.degree[u];
+    ++o.degree[v];
+  }
+  return o;
+}
+
 // A weld or a split moves a vertex along its own border past the neighbours it had there when a
 // collapsed patch corner opened with a gap: the generated chine hulls' transom comes down to one
 // point at the keel, and with a gap in the centre plane that point is a short row across the
@@ -153,16 +175,9 @@ void collapse_overrun(const Border& b, std::span<const Vec3d> before,
                       std::span<const std::uint8_t> inserted, double floor,
                       std::vector<Index>& into) {
   const std::size_t nb = b.vertices.size();
-  // Border neighbours on the vertex's own patch (border edges join vertices of one patch).
-  std::vector<std::array<Index, 2>> next(nb, {kInvalid, kInvalid});
-  std::vector<std::uint8_t> degree(nb, 0);
-  for (const BorderEdge& e : b.edges) {
-    const Index u = local[e.v0], v = local[e.v1];
-    if (degree[u] < 2) next[u][degree[u]] = v;
-    if (degree[v] < 2) next[v][degree[v]] = u;
-    ++degree[u];
-    ++degree[v];
-  }
+  const OwnBorder own = own_border(b, local);
+  const auto& next = own.next;
+  const auto& degree = own.degree;
   const auto find = [&](Index i) {
     while (into[i] != i) i = into[i] = into[into[i]];
     return i;
@@ -206,15 +221,9 @@ void collapse_short_rows(const Border& b, std::span<const Vec3d> before,
                          std::span<const std::uint8_t> free, std::span<const double> tol,
                          std::vector<Index>& into) {
   const std::size_t nb = b.vertices.size();
-  std::vector<std::array<Index, 2>> next(nb, {kInvalid, kInvalid});
-  std::vector<std::uint8_t> degree(nb, 0);
-  for (const BorderEdge& e : b.edges) {
-    const Index u = local[e.v0], v = local[e.v1];
-    if (degree[u] < 2) next[u][degree[u]] = v;
-    if (degree[v] < 2) next[v][degree[v]] = u;
-    ++degree[u];
-    ++degree[v];
-  }
+  const OwnBorder own = own_border(b, local);
+  const auto& next = own.next;
+  const auto& degree = own.degree;
   std::vector<Index> row;
   for (std::size_t k = 0; k < nb; ++k) {
     const Index i = Index(k);
