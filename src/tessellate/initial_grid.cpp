@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "nurbs/evaluate_grid.h"
 
 namespace hm {
 namespace {
@@ -27,6 +28,39 @@ struct Direction {
   double mean_speed = 0;
 };
 
+// Points of the iso-parameter lines at the values `across` of the other direction, at the
+// parameters `along`: out[i + along.size() * j] lies on line j at along[i]. One grid evaluation
+// (each basis computed once), bit-identical to evaluate() point by point.
+std::vector<Vec3d> iso_line_points(const NurbsSurface& s, bool along_u,
+                                   const std::vector<double>& along,
+                                   const std::vector<double>& across) {
+  if (along_u) return evaluate_grid(s, along, across).positions;
+  const std::vector<Vec3d> grid = evaluate_grid(s, across, along).positions;
+  std::vector<Vec3d> out(grid.size());
+  for (std::size_t j = 0; j < across.size(); ++j) {
+    for (std::size_t i = 0; i < along.size(); ++i)
+      out[i + along.size() * j] = grid[j + across.size() * i];
+  }
+  return out;
+}
+
+// Polyline length of line j of iso_line_points over the points [first, last].
+double polyline_length(const std::vector<Vec3d>& pts, std::size_t stride, std::size_t j,
+                       std::size_t first, std::size_t last) {
+  double l = 0;
+  for (std::size_t i = first + 1; i <= last; ++i) {
+    l += norm(pts[i + stride * j] - pts[i - 1 + stride * j]);
+  }
+  return l;
+}
+
+// n segments from a to b, b itself last (the parameters iso_line_length evaluates, first one
+// left out when skip_first).
+void append_segments(double a, double b, int n, bool skip_first, std::vector<double>& out) {
+  if (!skip_first) out.push_back(a);
+  for (int i = 1; i <= n; ++i) out.push_back(i == n ? b : a + (b - a) * double(i) / n);
+}
+
 // Lines of one direction: breaks are its span boundaries, across the samples of the other one.
 Direction direction_lines(const NurbsSurface& s, bool along_u, const std::vector<double>& breaks,
                           const std::vector<double>& across, double edge_length, int min_cells) {
@@ -34,12 +68,18 @@ Direction direction_lines(const NurbsSurface& s, bool along_u, const std::vector
   d.lines.push_back(breaks.front());
   double total = 0;
   const std::size_t spans = breaks.size() - 1;
+  std::vector<double> along;
+  for (std::size_t k = 0; k < spans; ++k) {
+    append_segments(breaks[k], breaks[k + 1], kLengthSegments, k > 0, along);
+  }
+  const std::vector<Vec3d> pts = iso_line_points(s, along_u, along, across);
   std::vector<int> cells(spans, 1);
   for (std::size_t k = 0; k < spans; ++k) {
     const double a = breaks[k], b = breaks[k + 1];
+    const std::size_t first = k * kLengthSegments;
     double longest = 0;
-    for (double f : across) {
-      const double l = iso_line_length(s, along_u, f, a, b, kLengthSegments);
+    for (std::size_t j = 0; j < across.size(); ++j) {
+      const double l = polyline_length(pts, along.size(), j, first, first + kLengthSegments);
       longest = std::max(longest, l);
       total += l;
     }
@@ -74,8 +114,12 @@ Direction direction_lines(const NurbsSurface& s, bool along_u, const std::vector
 // only C0 there (a knot of multiplicity >= degree: a crease the grid must follow). Real files
 // carry near-duplicate knots (0.1105 and 0.1106 on a 128 m hull); a grid line at each would make
 // cells thinner than the welding tolerance.
+// min_gap is asked for only when there is an inner break (it costs a few hundred evaluations).
+template <class MinGap>
 std::vector<double> usable_breaks(const std::vector<double>& breaks,
-                                  const std::vector<double>& knots, int degree, double min_gap) {
+                                  const std::vector<double>& knots, int degree, MinGap min_gap_of) {
+  if (breaks.size() <= 2) return breaks;
+  const double min_gap = min_gap_of();
   auto crease = [&](double t) { return std::count(knots.begin(), knots.end(), t) >= degree; };
   std::vector<double> kept{breaks.front()};
   for (std::size_t k = 1; k + 1 < breaks.size(); ++k) {
@@ -101,9 +145,15 @@ std::vector<double> usable_breaks(const std::vector<double>& breaks,
 // Parameter width that one edge_length spans on average along a direction.
 double parameter_step(const NurbsSurface& s, bool along_u, const std::vector<double>& across,
                       double edge_length) {
+  constexpr int kSegments = 64;
   const double a = along_u ? s.u0 : s.v0, b = along_u ? s.u1 : s.v1;
+  std::vector<double> along;
+  append_segments(a, b, kSegments, false, along);
+  const std::vector<Vec3d> pts = iso_line_points(s, along_u, along, across);
   double total = 0;
-  for (double f : across) total += iso_line_length(s, along_u, f, a, b, 64);
+  for (std::size_t j = 0; j < across.size(); ++j) {
+    total += polyline_length(pts, along.size(), j, 0, kSegments);
+  }
   const double mean_length = total / double(across.size());
   return mean_length > 0 ? (b - a) * edge_length / mean_length : (b - a);
 }
@@ -134,9 +184,9 @@ GridLines grid_lines(const NurbsSurface& s, double edge_length, const ResourceLi
   const std::vector<double> across_u = spread(s.u0, s.u1, kSampleLines);
   // Breaks closer than a quarter of the wanted cell width are not worth a grid line.
   bu = usable_breaks(bu, s.knots_u, s.degree_u,
-                     0.25 * parameter_step(s, true, across_v, edge_length));
+                     [&] { return 0.25 * parameter_step(s, true, across_v, edge_length); });
   bv = usable_breaks(bv, s.knots_v, s.degree_v,
-                     0.25 * parameter_step(s, false, across_u, edge_length));
+                     [&] { return 0.25 * parameter_step(s, false, across_u, edge_length); });
   Direction du = direction_lines(s, true, bu, across_v, edge_length, min_cells_u);
   Direction dv = direction_lines(s, false, bv, across_u, edge_length, min_cells_v);
   const double cells = double(du.lines.size() - 1) * double(dv.lines.size() - 1);
