@@ -52,9 +52,12 @@ inline int find_span(int degree, int count, const double* knots, double t) {
 namespace detail {
 
 // Scratch arrays sized for degrees up to Cap - 1: small ones for the common low degrees keep the
-// stack frame small, the large ones serve up to kMaxDegree. Same arithmetic in both.
-template <int Cap>
-void basis_funs(int span, double t, int degree, const double* knots, double* out) {
+// stack frame small, the large ones serve up to kMaxDegree. Same arithmetic in both. Fixed >= 0
+// is the degree known at compile time (the loops unroll; the operations and their order are the
+// same, so the results are bit-identical to the run-time degree's).
+template <int Cap, int Fixed = -1>
+void basis_funs(int span, double t, int run_degree, const double* knots, double* out) {
+  const int degree = Fixed >= 0 ? Fixed : run_degree;
   double left[Cap];
   double right[Cap];
   out[0] = 1.0;
@@ -71,9 +74,9 @@ void basis_funs(int span, double t, int degree, const double* knots, double* out
   }
 }
 
-template <int Cap>
+template <int Cap, int Fixed = -1>
 void ders_basis_funs(int span, double t, int degree, int n, const double* knots, double* ders) {
-  const int p = degree;
+  const int p = Fixed >= 0 ? Fixed : degree;
   const int w = p + 1;
   // ndu(j, r) = ndu[j * w + r]: upper triangle basis values, lower triangle knot differences.
   double ndu[Cap * Cap];
@@ -132,12 +135,18 @@ void ders_basis_funs(int span, double t, int degree, int n, const double* knots,
 }
 
 inline constexpr int kSmallCap = 8;
+// Cubic: nearly every hull patch (ship_449's 449 are all bicubic), and the surface kernel's
+// hottest evaluations. It gets its own compiled copy of the routines.
+inline constexpr int kCommonDegree = 3;
 
 }  // namespace detail
 
 // The degree + 1 non-zero basis functions at t in span `span` (A2.2); out[0..degree].
 inline void basis_funs(int span, double t, int degree, const double* knots, double* out) {
-  if (degree < detail::kSmallCap) {
+  if (degree == detail::kCommonDegree) {
+    detail::basis_funs<detail::kCommonDegree + 1, detail::kCommonDegree>(span, t, degree, knots,
+                                                                         out);
+  } else if (degree < detail::kSmallCap) {
     detail::basis_funs<detail::kSmallCap>(span, t, degree, knots, out);
   } else {
     detail::basis_funs<kMaxDegree + 1>(span, t, degree, knots, out);
@@ -151,6 +160,9 @@ inline void ders_basis_funs(int span, double t, int degree, int n, const double*
                             double* ders) {
   if (n == 0) {
     basis_funs(span, t, degree, knots, ders);
+  } else if (degree == detail::kCommonDegree) {
+    detail::ders_basis_funs<detail::kCommonDegree + 1, detail::kCommonDegree>(span, t, degree, n,
+                                                                              knots, ders);
   } else if (degree < detail::kSmallCap) {
     detail::ders_basis_funs<detail::kSmallCap>(span, t, degree, n, knots, ders);
   } else {

@@ -9,11 +9,13 @@ namespace {
 // k + l <= Order, then applies the quotient rule. nu and nv point at a ders_basis_funs block of at
 // least Order + 1 rows. The summation order is fixed (rows of the net j outside, u inside) and is
 // the same for every Order, so positions do not depend on how many derivatives were asked for.
-template <int Order>
+// FixedU / FixedV >= 0 are the degrees known at compile time (same operations in the same
+// order: bit-identical to the run-time degrees, with the loops unrolled).
+template <int Order, int FixedU = -1, int FixedV = -1>
 void combine_order(const SurfaceArrays& s, int span_u, const double* nu, int span_v,
                    const double* nv, Vec3d* out) {
-  const int pu = s.degree_u;
-  const int pv = s.degree_v;
+  const int pu = FixedU >= 0 ? FixedU : s.degree_u;
+  const int pv = FixedV >= 0 ? FixedV : s.degree_v;
   const int wu = pu + 1;
   const int wv = pv + 1;
   double a[Order + 1][Order + 1][4] = {};
@@ -62,6 +64,20 @@ void combine_order(const SurfaceArrays& s, int span_u, const double* nu, int spa
 
 void combine(const SurfaceArrays& s, int span_u, const double* nu, int span_v, const double* nv,
              int order, Vec3d* out) {
+  constexpr int kCubic = detail::kCommonDegree;
+  if (s.degree_u == kCubic && s.degree_v == kCubic) {
+    switch (order) {
+      case 0:
+        combine_order<0, kCubic, kCubic>(s, span_u, nu, span_v, nv, out);
+        return;
+      case 1:
+        combine_order<1, kCubic, kCubic>(s, span_u, nu, span_v, nv, out);
+        return;
+      default:
+        combine_order<2, kCubic, kCubic>(s, span_u, nu, span_v, nv, out);
+        return;
+    }
+  }
   switch (order) {
     case 0:
       combine_order<0>(s, span_u, nu, span_v, nv, out);
