@@ -54,7 +54,8 @@ namespace detail {
 // Scratch arrays sized for degrees up to Cap - 1: small ones for the common low degrees keep the
 // stack frame small, the large ones serve up to kMaxDegree. Same arithmetic in both. Fixed >= 0
 // is the degree known at compile time (the loops unroll; the operations and their order are the
-// same, so the results are bit-identical to the run-time degree's).
+// same, so the results are bit-identical to the run-time degree's); FixedN likewise for the
+// derivative order.
 template <int Cap, int Fixed = -1>
 void basis_funs(int span, double t, int run_degree, const double* knots, double* out) {
   const int degree = Fixed >= 0 ? Fixed : run_degree;
@@ -74,9 +75,10 @@ void basis_funs(int span, double t, int run_degree, const double* knots, double*
   }
 }
 
-template <int Cap, int Fixed = -1>
-void ders_basis_funs(int span, double t, int degree, int n, const double* knots, double* ders) {
+template <int Cap, int Fixed = -1, int FixedN = -1>
+void ders_basis_funs(int span, double t, int degree, int run_n, const double* knots, double* ders) {
   const int p = Fixed >= 0 ? Fixed : degree;
+  const int n = FixedN >= 0 ? FixedN : run_n;
   const int w = p + 1;
   // ndu(j, r) = ndu[j * w + r]: upper triangle basis values, lower triangle knot differences.
   double ndu[Cap * Cap];
@@ -161,8 +163,15 @@ inline void ders_basis_funs(int span, double t, int degree, int n, const double*
   if (n == 0) {
     basis_funs(span, t, degree, knots, ders);
   } else if (degree == detail::kCommonDegree) {
-    detail::ders_basis_funs<detail::kCommonDegree + 1, detail::kCommonDegree>(span, t, degree, n,
-                                                                              knots, ders);
+    constexpr int kCap = detail::kCommonDegree + 1;
+    constexpr int kP = detail::kCommonDegree;
+    if (n == 1) {
+      detail::ders_basis_funs<kCap, kP, 1>(span, t, degree, n, knots, ders);
+    } else if (n == 2) {
+      detail::ders_basis_funs<kCap, kP, 2>(span, t, degree, n, knots, ders);
+    } else {
+      detail::ders_basis_funs<kCap, kP>(span, t, degree, n, knots, ders);
+    }
   } else if (degree < detail::kSmallCap) {
     detail::ders_basis_funs<detail::kSmallCap>(span, t, degree, n, knots, ders);
   } else {
