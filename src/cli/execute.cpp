@@ -91,9 +91,12 @@ ExecuteResult execute(Invocation& inv, const ExecuteOptions& options) {
   result.exit_code = inv.action();
   record.log.finish();
   inv.global.record = nullptr;
-  if (result.exit_code == 0 && !record.outputs.empty()) {
-    result.record = record_json(record);
-    if (options.write_record && !inv.global.no_record) write_run_record(record);
+  // The record hashes the input and every output: built once, and only when it is wanted.
+  const bool write = options.write_record && !inv.global.no_record;
+  if (result.exit_code == 0 && !record.outputs.empty() && (write || options.keep_record)) {
+    nlohmann::ordered_json j = record_json(record);
+    if (write) write_run_record(record, j);
+    if (options.keep_record) result.record = std::move(j);
   }
   return result;
 }

@@ -26,12 +26,14 @@ std::unique_ptr<Invocation> make_invocation();
 struct ExecuteOptions {
   bool force_quiet = false;  // a batch's jobs print nothing of their own
   bool write_record = true;  // `*.run.json` beside the output (a batch writes its own)
+  bool keep_record = false;  // hand the record back in ExecuteResult (a batch's jobs)
   bool validate = false;     // --validate for the command run, whatever its own words say
 };
 
 struct ExecuteResult {
   int exit_code = 0;
-  // The run record (cli/run_record.h) of a command that wrote an output, else null.
+  // The run record (cli/run_record.h) of a command that wrote an output when keep_record was
+  // asked for, else null.
   nlohmann::ordered_json record;
 };
 

@@ -236,6 +236,7 @@ ordered_json run_job(const Manifest& m, const BatchJob& job, const std::string& 
   ExecuteOptions eo;
   eo.force_quiet = true;
   eo.write_record = false;
+  eo.keep_record = true;
   eo.validate = validate;
   // The words the spec already holds (job_spec built them), so a job is expanded once.
   std::vector<std::string> words = spec["words"].get<std::vector<std::string>>();

@@ -136,9 +136,13 @@ ordered_json record_json(const RunRecord& r) {
 
 void write_run_record(const RunRecord& r) {
   if (r.outputs.empty()) return;
-  const ordered_json j = record_json(r);
+  write_run_record(r, record_json(r));
+}
+
+void write_run_record(const RunRecord& r, const ordered_json& built) {
+  if (r.outputs.empty()) return;
   write_file_atomically(record_path_for(r.outputs.front()),
-                        [&](std::ostream& out) { out << j.dump(2) << '\n'; });
+                        [&](std::ostream& out) { out << built.dump(2) << '\n'; });
 }
 
 }  // namespace hm::cli
