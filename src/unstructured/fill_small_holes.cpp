@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <numbers>
 #include <set>
 #include <vector>
@@ -46,6 +47,31 @@ double angle_between(const Vec3d& a, const Vec3d& b) {
 // fine surface by far less than one.
 constexpr double kCreaseMargin = 1.0 * std::numbers::pi / 180;
 
+// How far new face f strays from the faces beside the two loop sides it closes: the larger
+// angle between its normal and theirs (radians).
+double misfit(const SurfaceMesh& m, const Face& f, const Vec3d& beside_a, const Vec3d& beside_b) {
+  const Vec3d n = face_normal(m.positions, f);
+  return std::max(angle_between(n, beside_a), angle_between(n, beside_b));
+}
+
+// A way to close (part of) a hole: its misfit and the length of its new diagonal.
+struct Closing {
+  double misfit, length;
+};
+
+// Of the closings that fit within kCreaseMargin of the best fit, the shortest (the first of
+// equals); size() when there is none.
+std::size_t fitting_shortest(const std::vector<Closing>& c) {
+  double best_fit = std::numeric_limits<double>::infinity();
+  for (const Closing& e : c) best_fit = std::min(best_fit, e.misfit);
+  std::size_t best = c.size();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (c[i].misfit > best_fit + kCreaseMargin) continue;
+    if (best == c.size() || c[i].length < c[best].length) best = i;
+  }
+  return best;
+}
+
 // Faces closing loop r (its vertices in its faces' winding) by ear clipping in the plane square to
 // `up` (the faces' side the new faces must face too): of the ears that are convex there, hold no
 // other loop vertex and whose diagonal is not an edge of the mesh already (is_edge), the one with
@@ -63,14 +89,12 @@ std::vector<Face> clip_ears(const SurfaceMesh& m, std::vector<Index> r, std::vec
   const auto turn = [](const Vec2d& a, const Vec2d& b, const Vec2d& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
   };
-  struct Ear {
-    std::size_t at;
-    double misfit, length;
-  };
-  std::vector<Ear> ears;
+  std::vector<std::size_t> ear_at;
+  std::vector<Closing> ears;
   std::vector<Face> out;
   while (r.size() >= 3) {
     const std::size_t k = r.size();
+    ear_at.clear();
     ears.clear();
     for (std::size_t i = 0; i < k; ++i) {
       const Index a = r[(i + k - 1) % k], b = r[i], c = r[(i + 1) % k];
@@ -87,20 +111,12 @@ std::vector<Face> clip_ears(const SurfaceMesh& m, std::vector<Index> r, std::vec
         holds = turn(pa, pb, p) <= 0 && turn(pb, pc, p) <= 0 && turn(pc, pa, p) <= 0;
       }
       if (holds) continue;
-      const Vec3d face_n = face_normal(m.positions, {a, c, b, kInvalid});
-      const double misfit = std::max(angle_between(face_n, beside[(i + k - 1) % k]),
-                                     angle_between(face_n, beside[i]));
-      ears.push_back({i, misfit, norm(m.positions[c] - m.positions[a])});
+      ear_at.push_back(i);
+      ears.push_back({misfit(m, {a, c, b, kInvalid}, beside[(i + k - 1) % k], beside[i]),
+                      norm(m.positions[c] - m.positions[a])});
     }
     if (ears.empty()) return {};
-    double best_fit = ears[0].misfit;
-    for (const Ear& e : ears) best_fit = std::min(best_fit, e.misfit);
-    std::size_t best = k;
-    double best_len = 0;
-    for (const Ear& e : ears) {
-      if (e.misfit > best_fit + kCreaseMargin) continue;
-      if (best == k || e.length < best_len) best = e.at, best_len = e.length;
-    }
+    const std::size_t best = ear_at[fitting_shortest(ears)];
     const Index a = r[(best + k - 1) % k], b = r[best], c = r[(best + 1) % k];
     out.push_back({a, c, b, kInvalid});
     if (k == 3) break;
@@ -419,24 +435,19 @@ std::vector<std::pair<std::vector<Index>, std::vector<Index>>> cycles_of(const B
 // fits kCreaseMargin worse; else the shorter.
 bool split_02_first(const SurfaceMesh& m, const std::vector<Index>& r,
                     const std::vector<Index>& around) {
-  // Largest angle of new face (r[k], r[k + 2], r[k + 1]) (sides k and k + 1) and
-  // (r[k], r[k + 3], r[k + 2]) (sides k + 2 and k + 3) to the faces across those sides.
-  const auto misfit = [&](std::size_t k) {
+  // Split k: new faces (r[k], r[k + 2], r[k + 1]) (sides k and k + 1) and (r[k], r[k + 3],
+  // r[k + 2]) (sides k + 2 and k + 3), the worse fit of the two.
+  const auto split = [&](std::size_t k) {
     double worst = 0;
     for (std::size_t h = 0; h < 2; ++h) {
       const std::size_t a = k + 2 * h;
-      const Vec3d n =
-          face_normal(m.positions, {r[a % 4], r[(a + 2) % 4], r[(a + 1) % 4], kInvalid});
-      for (std::size_t side : {a % 4, (a + 1) % 4}) {
-        worst = std::max(worst, angle_between(n, face_normal(m.positions, m.faces[around[side]])));
-      }
+      worst = std::max(worst, misfit(m, {r[a % 4], r[(a + 2) % 4], r[(a + 1) % 4], kInvalid},
+                                     face_normal(m.positions, m.faces[around[a % 4]]),
+                                     face_normal(m.positions, m.faces[around[(a + 1) % 4]])));
     }
-    return worst;
+    return Closing{worst, norm(m.positions[r[(k + 2) % 4]] - m.positions[r[k]])};
   };
-  const double m02 = misfit(0), m13 = misfit(1);
-  if (m02 + kCreaseMargin < m13) return true;
-  if (m13 + kCreaseMargin < m02) return false;
-  return norm(m.positions[r[0]] - m.positions[r[2]]) <= norm(m.positions[r[1]] - m.positions[r[3]]);
+  return fitting_shortest({split(0), split(1)}) == 0;
 }
 
 HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions& options,
