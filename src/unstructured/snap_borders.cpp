@@ -135,10 +135,12 @@ double vertex_tolerance(const MergeOptions& options, double border_edge_length) 
   return options.gap_tolerance > 0 ? options.gap_tolerance : 0.5 * border_edge_length;
 }
 
-// Each border vertex's neighbours along its own patch's border (border edges join vertices of
-// one patch; up to two kept) and how many border edges meet there (more than two where the
-// border touches itself).
+// Each border vertex's border edges and its neighbours along them (border edges join vertices of
+// one patch; the first two in edge order kept) and how many border edges meet there (more than
+// two where the border touches itself). Built once per snap; the row walks and the straight-run
+// test read it.
 struct OwnBorder {
+  std::vector<std::array<Index, 2>> edge;
   std::vector<std::array<Index, 2>> next;
   std::vector<std::uint8_t> degree;
 };
@@ -146,13 +148,23 @@ struct OwnBorder {
 OwnBorder own_border(const Border& b, std::span<const Index> local) {
   const std::size_t nb = b.vertices.size();
   OwnBorder o{std::vector<std::array<Index, 2>>(nb, {kInvalid, kInvalid}),
+              std::vector<std::array<Index, 2>>(nb, {kInvalid, kInvalid}),
               std::vector<std::uint8_t>(nb, 0)};
-  for (const BorderEdge& e : b.edges) {
+  for (std::size_t k = 0; k < b.edges.size(); ++k) {
+    const BorderEdge& e = b.edges[k];
     const Index u = local[e.v0], v = local[e.v1];
     if (o.degree[u] < 2) o.next[u][o.degree[u]] = v;
     if (o.degree[v] < 2) o.next[v][o.degree[v]] = u;
     ++o.degree[u];
     ++o.degree[v];
+    for (const Index x : {u, v}) {
+      auto& at = o.edge[x];
+      if (at[0] == kInvalid) {
+        at[0] = Index(k);
+      } else if (at[1] == kInvalid) {
+        at[1] = Index(k);
+      }
+    }
   }
   return o;
 }
@@ -170,12 +182,10 @@ OwnBorder own_border(const Border& b, std::span<const Index> local) {
 // kOnMove of the move, ahead of where it started); serial in border order. `into` is the
 // cluster representative per border vertex, updated; `moved_to` the place each will have. A
 // cluster that is split into another patch's edge (`inserted`, by representative) stays.
-void collapse_overrun(const Border& b, std::span<const Vec3d> before,
-                      std::span<const Vec3d> moved_to, std::span<const Index> local,
-                      std::span<const std::uint8_t> inserted, double floor,
-                      std::vector<Index>& into) {
-  const std::size_t nb = b.vertices.size();
-  const OwnBorder own = own_border(b, local);
+void collapse_overrun(const OwnBorder& own, std::span<const Vec3d> before,
+                      std::span<const Vec3d> moved_to, std::span<const std::uint8_t> inserted,
+                      double floor, std::vector<Index>& into) {
+  const std::size_t nb = own.degree.size();
   const auto& next = own.next;
   const auto& degree = own.degree;
   const auto find = [&](Index i) {
@@ -216,12 +226,10 @@ void collapse_overrun(const Border& b, std::span<const Vec3d> before,
 // no other patch's border within their tolerance, up to the first that is not such; when that
 // one is not welded either, at least two lay between, and the row is no longer than the welded
 // vertex's tolerance, the row and its end join the welded vertex. Serial, in border order.
-void collapse_short_rows(const Border& b, std::span<const Vec3d> before,
-                         std::span<const Index> local, std::span<const std::uint8_t> welded,
-                         std::span<const std::uint8_t> free, std::span<const double> tol,
-                         std::vector<Index>& into) {
-  const std::size_t nb = b.vertices.size();
-  const OwnBorder own = own_border(b, local);
+void collapse_short_rows(const OwnBorder& own, std::span<const Vec3d> before,
+                         std::span<const std::uint8_t> welded, std::span<const std::uint8_t> free,
+                         std::span<const double> tol, std::vector<Index>& into) {
+  const std::size_t nb = own.degree.size();
   const auto& next = own.next;
   const auto& degree = own.degree;
   std::vector<Index> row;
@@ -261,6 +269,7 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
   }
   std::vector<Index> local(m.vertex_count(), kInvalid);  // mesh vertex -> border index
   for (std::size_t i = 0; i < nb; ++i) local[b.vertices[i]] = Index(i);
+  const OwnBorder own = own_border(b, local);
 
   // Collect: nearest other-patch edge of every border vertex, within a tolerance that is at most
   // half its own patch's width there.
@@ -291,23 +300,12 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
 
   SnapStats stats;
   const double closed_floor = 1e-9 * length;
-  // Border edges at each border vertex (up to two; more where the border touches itself).
-  std::vector<std::array<Index, 2>> edges_at(nb, {kInvalid, kInvalid});
-  for (std::size_t e = 0; e < b.edges.size(); ++e) {
-    for (const Index v : {local[b.edges[e].v0], local[b.edges[e].v1]}) {
-      if (edges_at[v][0] == kInvalid) {
-        edges_at[v][0] = Index(e);
-      } else if (edges_at[v][1] == kInvalid) {
-        edges_at[v][1] = Index(e);
-      }
-    }
-  }
   // True when the border goes on straight (within kStraightCos) past the end (v1 if at_v1) of
   // border edge e: a vertex facing that end faces a straight run of the border, not a corner.
   const auto runs_on_straight = [&](Index e, bool at_v1) {
     const BorderEdge& be = b.edges[e];
     const Index end = at_v1 ? be.v1 : be.v0;
-    const auto& at = edges_at[local[end]];
+    const auto& at = own.edge[local[end]];
     const Index next = at[0] == e ? at[1] : at[0];
     if (next == kInvalid || (at[0] != e && at[1] != e)) return false;
     const BorderEdge& ne = b.edges[next];
@@ -517,7 +515,7 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
     std::vector<Vec3d> moved_to(nb);
     for (std::size_t i = 0; i < nb; ++i) moved_to[i] = m.positions[b.vertices[rep[i]]];
     std::vector<Index> into(rep.begin(), rep.end());
-    collapse_overrun(b, points, moved_to, local, is_inserted, closed_floor, into);
+    collapse_overrun(own, points, moved_to, is_inserted, closed_floor, into);
     // Free: not welded, not split into an edge, no edge of its split into (a row must not
     // collapse an edge that a split is about to cut) and no other patch's border near.
     std::vector<std::uint8_t> welded(nb), free(nb, 1);
@@ -529,7 +527,7 @@ SnapStats snap_borders(Work& w, const Border& b, const MergeOptions& options, do
       welded[i] = count[rep[i]] > 1;
       free[i] = free[i] && !welded[i] && !is_inserted[i] && near[i].edge == kInvalid;
     }
-    collapse_short_rows(b, points, local, welded, free, tol, into);
+    collapse_short_rows(own, points, welded, free, tol, into);
     for (std::size_t i = 0; i < nb; ++i) vert_rep[b.vertices[i]] = b.vertices[into[i]];
   }
   for (Face& f : m.faces) {
