@@ -144,13 +144,6 @@ struct Solver {
   }
 };
 
-double net_size(const NurbsSurface& s) {
-  BBox3d box;
-  for (const Vec3d& p : s.points) box.add(p);
-  const double d = box.diagonal();
-  return d > 0 ? d : 1.0;
-}
-
 std::vector<double> grid_params(const std::vector<double>& breaks) {
   const std::size_t spans = breaks.size() - 1;
   std::vector<double> ts;
@@ -263,9 +256,21 @@ SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q) {
 
 SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
                                 double v_start) {
+  return closest_point(s, q, u_start, v_start, net_size(s));
+}
+
+SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
+                                double v_start, double net) {
   // Called per vertex in the hot loops (queries, panel improvement): no projector, no allocation.
-  const Solver solver{s, surface_arrays(s), q, net_size(s)};
+  const Solver solver{s, surface_arrays(s), q, net};
   return solver.newton(u_start, v_start);
+}
+
+double net_size(const NurbsSurface& s) {
+  BBox3d box;
+  for (const Vec3d& p : s.points) box.add(p);
+  const double d = box.diagonal();
+  return d > 0 ? d : 1.0;
 }
 
 }  // namespace hm

@@ -70,6 +70,13 @@ SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q);
 // Newton from a given start, for callers that already know a good (u, v).
 SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
                                 double v_start);
+// The same with net = net_size(s) computed once by the caller: the net's size sets Newton's
+// tolerances, and measuring it visits every control point (a single-patch hull's 972 cost twice
+// the Newton iterations).
+SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
+                                double v_start, double net);
+// Diagonal of the control net's bounding box (m; 1 for a net of one point).
+double net_size(const NurbsSurface& s);
 
 // Many projections onto one surface (a trim curve's samples): the evaluation arrays are built
 // once, and the coarse start grid once, at the first global search, instead of per query. Gives

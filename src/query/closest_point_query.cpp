@@ -163,7 +163,8 @@ ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const Patc
     if (!take(c)) continue;
     auto refine_on = [&](PatchId p, Vec2d start, Vec2d& uv, Vec3d& point) {
       const NurbsSurface& surface = m.patches[p].surface;
-      const SurfaceProjection proj = hm::closest_point(surface, q, start.x, start.y);
+      const SurfaceProjection proj =
+          hm::closest_point(surface, q, start.x, start.y, m.domains[p].net);
       uv = polish_closest(surface, m.domains[p], q, {proj.u, proj.v});
       point = evaluate(surface, uv.x, uv.y);
       return norm(q - point);

@@ -123,7 +123,7 @@ void HullQuery::Impl::project_corners(const SurfaceMesh& mesh) {
         }
       }
       if (n > 0) {
-        proj = hm::closest_point(surface, q, sum.x / n, sum.y / n);
+        proj = hm::closest_point(surface, q, sum.x / n, sum.y / n, domains[head.patch].net);
         started = true;
       }
     }

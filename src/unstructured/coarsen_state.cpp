@@ -108,6 +108,9 @@ void build_state(std::span<const Patch> patches, const SurfaceMesh& fine,
                         " non-manifold edges; merge it first");
   }
   s.patches = patches;
+  s.patch_net.resize(patches.size());
+  parallel_for(0, patches.size(),
+               [&](std::size_t p) { s.patch_net[p] = net_size(patches[p].surface); });
   s.fine_positions = fine.positions;
   s.fine_vertex_patch = fine.vertex_patch;
   s.fine_uv = fine.vertex_uv;

@@ -75,6 +75,7 @@ struct FineLine {
 struct State {
   // Read-only inputs.
   std::span<const Patch> patches;
+  std::vector<double> patch_net;  // per patch, net_size of its surface (m), for projections
   std::span<const Vec3d> fine_positions;
   std::span<const PatchId> fine_vertex_patch;
   std::span<const Vec2d> fine_uv;

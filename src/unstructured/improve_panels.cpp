@@ -308,7 +308,8 @@ bool try_move(State& s, Index v, double& deviation) {
     const Vec3d step = (centre - old_p) - dot(centre - old_p, n) * n;
     if (squared_norm(step) < 1e-4 * area / static_cast<double>(star.size())) return false;
     const Patch& patch = s.patches[s.vpatch[v]];
-    const SurfaceProjection pr = closest_point(patch.surface, old_p + step, s.uv[v].x, s.uv[v].y);
+    const SurfaceProjection pr =
+        closest_point(patch.surface, old_p + step, s.uv[v].x, s.uv[v].y, s.patch_net[s.vpatch[v]]);
     if (!pr.converged || !is_finite(pr.point) || pr.distance > norm(step)) return false;
     to.p = pr.point;
     to.uv = {pr.u, pr.v};
@@ -358,8 +359,8 @@ bool slide_on_surface(State& s, Index v, Index f, Index g, double& deviation) {
   const Patch& patch = s.patches[s.vpatch[v]];
   for (const double factor : {1.5, 2.5, 4.0}) {
     const double step = factor * keep;
-    const SurfaceProjection pr =
-        closest_point(patch.surface, s.position[v] + step * d, s.uv[v].x, s.uv[v].y);
+    const SurfaceProjection pr = closest_point(patch.surface, s.position[v] + step * d, s.uv[v].x,
+                                               s.uv[v].y, s.patch_net[s.vpatch[v]]);
     if (!pr.converged || !is_finite(pr.point) || pr.distance > step) continue;
     const Placement to{pr.point, {pr.u, pr.v}, s.vpatch[v], s.source[v], s.spot[v].k};
     if (try_place(s, v, to, deviation, true)) return true;
