@@ -31,6 +31,8 @@ void NearestOnLines::build(const std::vector<std::vector<Vec3d>>& lines) {
   if (!(cell_ > 0)) cell_ = 1;
   y0_ = box.lo.y;
   z0_ = box.lo.z;
+  x_lo_ = box.lo.x;
+  x_hi_ = box.hi.x;
   ny_ = static_cast<int>(ey / cell_) + 1;
   nz_ = static_cast<int>(ez / cell_) + 1;
   // Count -> scan -> fill: each segment goes into every cell its (y, z) box overlaps.
@@ -68,6 +70,10 @@ Vec3d NearestOnLines::nearest(const Vec3d& q) const {
   // q may lie outside the grid: distances then count from the grid's edge.
   const double out_y = std::max({y0_ - q.y, q.y - (y0_ + ny_ * cell_), 0.0});
   const double out_z = std::max({z0_ - q.z, q.z - (z0_ + nz_ * cell_), 0.0});
+  // Every segment lies at least this far from q in x. The grid is in (y, z); a query from the
+  // next station lies a station's step off the lines' plane, and without this part of the bound
+  // the rings grew until they were that step wide in (y, z) too.
+  const double out_x = std::max({x_lo_ - q.x, q.x - x_hi_, 0.0});
   // Rings of cells around q's cell (Chebyshev distance r), until no cell beyond can be nearer.
   for (int r = 0;; ++r) {
     for (int j = cj - r; j <= cj + r; ++j) {
@@ -94,7 +100,8 @@ Vec3d NearestOnLines::nearest(const Vec3d& q) const {
     }
     // A cell beyond ring r lies at least r cells farther from q in y or in z.
     const double far_y = out_y + r * cell_, far_z = out_z + r * cell_;
-    const double reach2 = std::min(far_y * far_y + out_z * out_z, out_y * out_y + far_z * far_z);
+    const double reach2 =
+        out_x * out_x + std::min(far_y * far_y + out_z * out_z, out_y * out_y + far_z * far_z);
     if (best_d <= reach2 || (r >= ny_ && r >= nz_)) return best;
   }
 }

@@ -31,6 +31,7 @@ class NearestOnLines {
 
   std::vector<Seg> segs_;
   double y0_ = 0, z0_ = 0, cell_ = 1;
+  double x_lo_ = 0, x_hi_ = 0;  // x range of every segment: a station's lines lie in its plane
   int ny_ = 0, nz_ = 0;
   std::vector<Index> first_, items_;  // cell i + ny j holds items_[first_[c] .. first_[c + 1])
 };
