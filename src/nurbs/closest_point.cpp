@@ -86,7 +86,8 @@ struct Solver {
     dv = (-gv * huu + gu * huv) / det;
   }
 
-  SurfaceProjection newton(double u, double v) const {
+  // at_answer, when given, gets the derivatives at the returned (u, v).
+  SurfaceProjection newton(double u, double v, SurfaceDerivs* at_answer = nullptr) const {
     u = std::clamp(u, s.u0, s.u1);
     v = std::clamp(v, s.v0, s.v1);
     Vec3d d[6];
@@ -134,6 +135,7 @@ struct Solver {
       if (moved <= kStepFloor * scale || same) converged = stationary(u, v, d);
     }
     if (!converged) converged = stationary(u, v, d);
+    if (at_answer) *at_answer = SurfaceDerivs{d[0], d[1], d[2], d[3], d[4], d[5]};
     SurfaceProjection out;
     out.u = u;
     out.v = v;
@@ -264,6 +266,12 @@ SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_
   // Called per vertex in the hot loops (queries, panel improvement): no projector, no allocation.
   const Solver solver{s, surface_arrays(s), q, net};
   return solver.newton(u_start, v_start);
+}
+
+SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
+                                double v_start, double net, SurfaceDerivs& at_answer) {
+  const Solver solver{s, surface_arrays(s), q, net};
+  return solver.newton(u_start, v_start, &at_answer);
 }
 
 double net_size(const NurbsSurface& s) {

@@ -75,6 +75,10 @@ SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_
 // the Newton iterations).
 SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
                                 double v_start, double net);
+// And the derivatives (to second order) at the answer's (u, v), which Newton evaluated last:
+// the same bits as evaluate_derivs(s, u, v, 2) there.
+SurfaceProjection closest_point(const NurbsSurface& s, const Vec3d& q, double u_start,
+                                double v_start, double net, SurfaceDerivs& at_answer);
 // Diagonal of the control net's bounding box (m; 1 for a net of one point).
 double net_size(const NurbsSurface& s);
 

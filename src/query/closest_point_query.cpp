@@ -163,10 +163,12 @@ ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const Patc
     if (!take(c)) continue;
     auto refine_on = [&](PatchId p, Vec2d start, Vec2d& uv, Vec3d& point) {
       const NurbsSurface& surface = m.patches[p].surface;
+      // Positions do not depend on the derivative order asked for (kernels/evaluate_nurbs.h), so
+      // Newton's and the polish's last evaluations serve in place of evaluating again.
+      SurfaceDerivs at_answer;
       const SurfaceProjection proj =
-          hm::closest_point(surface, q, start.x, start.y, m.domains[p].net);
-      uv = polish_closest(surface, m.domains[p], q, {proj.u, proj.v});
-      point = evaluate(surface, uv.x, uv.y);
+          hm::closest_point(surface, q, start.x, start.y, m.domains[p].net, at_answer);
+      uv = polish_closest(surface, m.domains[p], q, {proj.u, proj.v}, at_answer, point);
       return norm(q - point);
     };
     auto refine_from = [&](Vec2d start, Vec2d& uv, Vec3d& point) {

@@ -214,8 +214,9 @@ RefinedPlanePoint refine_plane_edge(const NurbsSurface& s, const ParamDomain& d,
   return best;
 }
 
-Vec2d polish_closest(const NurbsSurface& s, const ParamDomain& d, const Vec3d& q, Vec2d uv) {
-  SurfaceDerivs dv = evaluate_derivs(s, uv.x, uv.y, 2);
+Vec2d polish_closest(const NurbsSurface& s, const ParamDomain& d, const Vec3d& q, Vec2d uv,
+                     const SurfaceDerivs& at_uv, Vec3d& point) {
+  SurfaceDerivs dv = at_uv;
   double dist2 = squared_norm(dv.p - q);
   for (int it = 0; it < 4; ++it) {
     const Vec3d r = dv.p - q;
@@ -247,6 +248,7 @@ Vec2d polish_closest(const NurbsSurface& s, const ParamDomain& d, const Vec3d& q
     dv = nd;
     dist2 = next_dist2;
   }
+  point = dv.p;
   return uv;
 }
 

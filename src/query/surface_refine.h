@@ -63,7 +63,9 @@ RefinedPlanePoint refine_plane_edge(const NurbsSurface& s, const ParamDomain& d,
 // Newton steps on the stationarity of |S(u, v) - q|^2 from (u, v), with second derivatives; a
 // parameter at a domain side whose gradient pushes outwards stays there. Polishes the answer of
 // hm::closest_point (whose stop test is a cosine of 1e-7) to round-off; a step that moves S
-// farther from q is not taken.
-Vec2d polish_closest(const NurbsSurface& s, const ParamDomain& d, const Vec3d& q, Vec2d uv);
+// farther from q is not taken. at_uv holds the derivatives at the starting uv (Newton's last
+// evaluation); point gets S at the returned (u, v).
+Vec2d polish_closest(const NurbsSurface& s, const ParamDomain& d, const Vec3d& q, Vec2d uv,
+                     const SurfaceDerivs& at_uv, Vec3d& point);
 
 }  // namespace hm::query
