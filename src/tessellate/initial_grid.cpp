@@ -54,10 +54,9 @@ double polyline_length(const std::vector<Vec3d>& pts, std::size_t stride, std::s
   return l;
 }
 
-// n segments from a to b, b itself last (the parameters iso_line_length evaluates, first one
-// left out when skip_first).
-void append_segments(double a, double b, int n, bool skip_first, std::vector<double>& out) {
-  if (!skip_first) out.push_back(a);
+// The ends of n segments from a to b, b itself last (the parameters iso_line_length evaluates).
+void append_segments(double a, double b, int n, std::vector<double>& out) {
+  out.push_back(a);
   for (int i = 1; i <= n; ++i) out.push_back(i == n ? b : a + (b - a) * double(i) / n);
 }
 
@@ -68,18 +67,17 @@ Direction direction_lines(const NurbsSurface& s, bool along_u, const std::vector
   d.lines.push_back(breaks.front());
   double total = 0;
   const std::size_t spans = breaks.size() - 1;
+  std::vector<int> cells(spans, 1);
   std::vector<double> along;
   for (std::size_t k = 0; k < spans; ++k) {
-    append_segments(breaks[k], breaks[k + 1], kLengthSegments, k > 0, along);
-  }
-  const std::vector<Vec3d> pts = iso_line_points(s, along_u, along, across);
-  std::vector<int> cells(spans, 1);
-  for (std::size_t k = 0; k < spans; ++k) {
     const double a = breaks[k], b = breaks[k + 1];
-    const std::size_t first = k * kLengthSegments;
+    // One span at a time: a patch of a million spans needs no more memory than one of one.
+    along.clear();
+    append_segments(a, b, kLengthSegments, along);
+    const std::vector<Vec3d> pts = iso_line_points(s, along_u, along, across);
     double longest = 0;
     for (std::size_t j = 0; j < across.size(); ++j) {
-      const double l = polyline_length(pts, along.size(), j, first, first + kLengthSegments);
+      const double l = polyline_length(pts, along.size(), j, 0, kLengthSegments);
       longest = std::max(longest, l);
       total += l;
     }
@@ -148,7 +146,7 @@ double parameter_step(const NurbsSurface& s, bool along_u, const std::vector<dou
   constexpr int kSegments = 64;
   const double a = along_u ? s.u0 : s.v0, b = along_u ? s.u1 : s.v1;
   std::vector<double> along;
-  append_segments(a, b, kSegments, false, along);
+  append_segments(a, b, kSegments, along);
   const std::vector<Vec3d> pts = iso_line_points(s, along_u, along, across);
   double total = 0;
   for (std::size_t j = 0; j < across.size(); ++j) {
