@@ -167,7 +167,7 @@ ClosestPoint refine_nearest(const HullQuery::Impl& m, const Vec3d& q, const Patc
       // Newton's and the polish's last evaluations serve in place of evaluating again.
       SurfaceDerivs at_answer;
       const SurfaceProjection proj =
-          hm::closest_point(surface, q, start.x, start.y, m.domains[p].net, at_answer);
+          hm::closest_point(surface, q, start.x, start.y, m.nets[p], at_answer);
       uv = polish_closest(surface, m.domains[p], q, {proj.u, proj.v}, at_answer, point);
       return norm(q - point);
     };

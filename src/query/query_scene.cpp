@@ -123,7 +123,7 @@ void HullQuery::Impl::project_corners(const SurfaceMesh& mesh) {
         }
       }
       if (n > 0) {
-        proj = hm::closest_point(surface, q, sum.x / n, sum.y / n, domains[head.patch].net);
+        proj = hm::closest_point(surface, q, sum.x / n, sum.y / n, nets[head.patch]);
         started = true;
       }
     }
@@ -188,6 +188,8 @@ HullQuery::Impl::Impl(std::span<const Patch> in_patches, const SurfaceMesh& mesh
   // point starts on a triangle): a query over a few faces of a large hull, as the merge's overlap
   // search builds, skips the others.
   domains.resize(patches.size());
+  nets.resize(patches.size());
+  parallel_for(0, patches.size(), [&](std::size_t p) { nets[p] = net_size(patches[p].surface); });
   std::vector<std::size_t> used;
   for (std::size_t p = 0; p < patches.size(); ++p) {
     if (patch_first[p + 1] > patch_first[p]) used.push_back(p);

@@ -20,7 +20,10 @@ namespace hm {
 
 struct HullQuery::Impl {
   std::vector<Patch> patches;
-  std::vector<query::ParamDomain> domains;  // per patch
+  std::vector<query::ParamDomain> domains;  // per patch (set for patches with triangles)
+  // Per patch, every patch: net_size of its surface (m), the scale of Newton's tolerances (a
+  // closest point may start on a patch with no triangle here, from a corner made on it).
+  std::vector<double> nets;
 
   BBox3d box;                // of the mesh vertices, model frame
   Vec3d centre;              // origin of the local frame

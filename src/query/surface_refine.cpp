@@ -90,7 +90,7 @@ Vec2d ParamDomain::map(Vec2d uv) const {
 }
 
 ParamDomain make_domain(const NurbsSurface& s, double tol) {
-  ParamDomain d{s.u0, s.u1, s.v0, s.v1, true, true, net_size(s)};
+  ParamDomain d{s.u0, s.u1, s.v0, s.v1, true, true};
   constexpr int kSamples = 5;
   for (int i = 0; i < kSamples; ++i) {
     const double f = (i + 0.5) / kSamples;

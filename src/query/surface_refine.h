@@ -12,7 +12,6 @@ namespace hm::query {
 struct ParamDomain {
   double u0 = 0, u1 = 1, v0 = 0, v1 = 1;
   bool closed_u = false, closed_v = false;
-  double net = 1;  // net_size of the surface (m): the scale of Newton's tolerances
 
   // Wrapped into the domain in closed directions, clamped in the others.
   Vec2d map(Vec2d uv) const;
