@@ -245,10 +245,17 @@ ordered_json run_job(const Manifest& m, const BatchJob& job, const std::string& 
   ExecuteResult r = execute_args(words, job.id, eo);
   if (r.exit_code != 0) throw Error(job.id + ": exit code " + std::to_string(r.exit_code));
   ordered_json rec = std::move(r.record);
-  ordered_json outputs = ordered_json::array({file_record(first)});
+  // The job's record has hashed `first` already; the conversions' records would only be dropped.
+  ordered_json outputs = ordered_json::array();
+  for (const ordered_json& o : rec.value("outputs", ordered_json::array())) {
+    if (o.value("path", "") == first) outputs.push_back(o);
+  }
+  if (outputs.empty()) outputs.push_back(file_record(first));
+  ExecuteOptions convert = eo;
+  convert.keep_record = false;
   for (std::size_t k = 1; k < job.formats.size(); ++k) {
     const std::string out = output_path(out_dir, job, job.formats[k]);
-    execute_args({"convert", first, out}, job.id, eo);
+    execute_args({"convert", first, out}, job.id, convert);
     outputs.push_back(file_record(out));
   }
   rec["outputs"] = outputs;

@@ -134,11 +134,6 @@ ordered_json record_json(const RunRecord& r) {
   return j;
 }
 
-void write_run_record(const RunRecord& r) {
-  if (r.outputs.empty()) return;
-  write_run_record(r, record_json(r));
-}
-
 void write_run_record(const RunRecord& r, const ordered_json& built) {
   if (r.outputs.empty()) return;
   write_file_atomically(record_path_for(r.outputs.front()),

@@ -49,9 +49,8 @@ std::string record_path_for(const std::string& output);
 // [{path, bytes, sha256}], stages [{name, seconds}], results, quality. Reads the files it hashes;
 // throws IoError when one is missing.
 nlohmann::ordered_json record_json(const RunRecord& record);
-// Writes record_json() (or the given one, already built from the record) atomically beside the
-// first output (nothing when there is none).
-void write_run_record(const RunRecord& record);
+// Writes `built` (record_json() of the record) atomically beside the first output (nothing when
+// there is none).
 void write_run_record(const RunRecord& record, const nlohmann::ordered_json& built);
 
 }  // namespace hm::cli
