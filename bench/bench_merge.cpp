@@ -19,6 +19,7 @@
 #include "cli/tune_allocator.h"
 #include "iges/read_iges.h"
 #include "kernels/morton.h"
+#include "kernels/order_by_key.h"
 #include "kernels/weld.h"
 #include "mesh/adjacency.h"
 #include "nurbs/generate_hull.h"
@@ -112,6 +113,20 @@ void BM_MortonOrder(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(BM_MortonOrder)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
+
+void BM_OrderByKey(benchmark::State& state) {
+  std::mt19937_64 rng(3);
+  std::vector<std::uint64_t> keys(static_cast<std::size_t>(state.range(0)));
+  for (std::uint64_t& k : keys) k = rng() >> 1;  // 63 bits, as Morton codes
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(state.range(1)));
+  for (auto _ : state) benchmark::DoNotOptimize(order_by_key(keys));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_OrderByKey)
+    ->ArgNames({"keys", "threads"})
+    ->ArgsProduct({{100'000, 1'000'000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_FindClosePairs(benchmark::State& state) {
   const std::vector<Vec3d> p = random_points(static_cast<std::size_t>(state.range(0)));

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "core/parallel.h"
+#include "kernels/order_by_key.h"
 
 namespace hm {
 namespace {
@@ -53,13 +53,7 @@ std::vector<Index> morton_order(std::span<const Vec3d> points) {
   for (const Vec3d& p : points) box.add(p);
   std::vector<std::uint64_t> codes(points.size());
   morton_codes(points, box, codes);
-  std::vector<Index> new2old(points.size());
-  std::iota(new2old.begin(), new2old.end(), Index{0});
-  // Ties broken by index: a strict total order, so the parallel sort is deterministic.
-  parallel_sort(new2old.begin(), new2old.end(), [&](Index a, Index b) {
-    return codes[a] != codes[b] ? codes[a] < codes[b] : a < b;
-  });
-  return new2old;
+  return order_by_key(codes);  // ties by index
 }
 
 }  // namespace hm

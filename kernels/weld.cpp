@@ -9,6 +9,7 @@
 #include "core/bbox.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "kernels/order_by_key.h"
 
 namespace hm {
 namespace {
@@ -47,10 +48,7 @@ std::vector<ClosePair> find_close_pairs(std::span<const Vec3d> points,
   std::vector<std::uint64_t> key(n);
   parallel_for(
       0, n, [&](std::size_t i) { key[i] = cell_key(cell_of(points[i])); }, 1024);
-  std::vector<Index> order(n);
-  std::iota(order.begin(), order.end(), Index{0});
-  parallel_sort(order.begin(), order.end(),
-                [&](Index a, Index b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  const std::vector<Index> order = order_by_key(key);
   std::vector<std::uint64_t> sorted_key(n);
   for (std::size_t i = 0; i < n; ++i) sorted_key[i] = key[order[i]];
 
