@@ -78,6 +78,7 @@ std::vector<OpenGapVertex> find_open_gap_vertices(const Work& w, const EdgeAdjac
         m.positions[v], std::max(reach, options.gap_report_edges * b.edge_length[i]), [&](Index e) {
           const BorderEdge& be = b.edges[e];
           if (be.patch == pv || be.v0 == v || be.v1 == v) return;
+          if (!grid.may_be_within(e, m.positions[v], near[i].distance)) return;
           // A vertex beside an edge's end (beyond it, or a rounding error from it) faces that edge
           // across a gap only where the border runs straight on through that end; at a corner it
           // is a border running on past it (the next patch's deck edge, or a low deck edge meeting

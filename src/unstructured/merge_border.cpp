@@ -7,6 +7,7 @@
 #include "core/bbox.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "kernels/order_by_key.h"
 #include "mesh/adjacency.h"
 
 namespace hm::merge {
@@ -69,11 +70,24 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
   size_ = std::max({median_edges * sorted[sorted.size() / 2], min_cell, 1e-12 * (1 + most)});
   // At most 2^20 cells along an axis keeps the keys in range for any input.
   size_ = std::max(size_, most / double(1 << 20));
+  // The exact distance is off by a few ulps of the coordinates; the margin is 1e-9 of them.
+  double scale = 1;
+  for (int a = 0; a < 3; ++a) scale = std::max({scale, std::abs(box.lo[a]), std::abs(box.hi[a])});
+  const double margin = 1e-9 * scale;
+  ball_centre_.resize(edges.size());
+  ball_radius_.resize(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const Vec3d &a = positions[edges[i].v0], &b = positions[edges[i].v1];
+    ball_centre_[i] = 0.5 * (a + b);
+    ball_radius_[i] = 0.5 * length[i] * (1 + 1e-9) + margin;
+  }
   lo_ = box.lo;
   for (int a = 0; a < 3; ++a) dims_[a] = std::int64_t(e[a] / size_) + 1;
-  // Count -> scan -> scatter would do; a sort of (cell, edge) pairs is simpler and as fast here.
-  std::vector<std::pair<std::uint64_t, Index>> items;
-  items.reserve(edges.size() * 4);
+  // (cell, edge) entries, made in edge order and put in cell order stably: by cell, then edge.
+  std::vector<std::uint64_t> entry_key;
+  std::vector<Index> entry_edge;
+  entry_key.reserve(edges.size() * 4);
+  entry_edge.reserve(edges.size() * 4);
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const Vec3d &a = positions[edges[i].v0], &b = positions[edges[i].v1];
     std::int64_t lo[3], hi[3];
@@ -83,16 +97,19 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
     }
     for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-        for (std::int64_t x = lo[0]; x <= hi[0]; ++x) items.push_back({key(x, y, z), Index(i)});
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
+          entry_key.push_back(key(x, y, z));
+          entry_edge.push_back(Index(i));
+        }
       }
     }
   }
-  parallel_sort(items.begin(), items.end(), std::less<>());
-  keys_.resize(items.size());
-  order_.resize(items.size());
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    keys_[i] = items[i].first;
-    order_[i] = items[i].second;
+  const std::vector<Index> entry_new2old = order_by_key(entry_key);
+  keys_.resize(entry_key.size());
+  order_.resize(entry_key.size());
+  for (std::size_t i = 0; i < entry_key.size(); ++i) {
+    keys_[i] = entry_key[entry_new2old[i]];
+    order_[i] = entry_edge[entry_new2old[i]];
   }
   // Occupied cells in an open-addressing table (load under 1/2): a query looks at 27 or more
   // cells, most of them empty, and a binary search over every entry cost more than the

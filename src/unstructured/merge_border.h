@@ -68,6 +68,15 @@ class SegmentGrid {
     }
   }
 
+  // False when edge e certainly lies farther than d from p: its bounding ball, grown by a margin
+  // far above the rounding of closest_on_segment, does. A nearest-edge search asks this before
+  // the exact distance, whose division and root (latency, not work) were a third of the merge.
+  bool may_be_within(Index e, const Vec3d& p, double d) const {
+    const Vec3d q = p - ball_centre_[e];
+    const double r = d + ball_radius_[e];
+    return !(dot(q, q) > r * r);
+  }
+
  private:
   std::int64_t cell(double v, int axis) const;
   std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -83,6 +92,8 @@ class SegmentGrid {
   std::int64_t dims_[3] = {0, 0, 0};
   std::vector<std::uint64_t> keys_;  // sorted
   std::vector<Index> order_;         // edge index per sorted key
+  std::vector<Vec3d> ball_centre_;   // per edge: its midpoint
+  std::vector<double> ball_radius_;  // per edge: half its length, plus the margin, m
   // Occupied cells: key and first entry, open addressing (a power-of-two table).
   static constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};
   std::vector<std::uint64_t> slot_key_;

@@ -156,7 +156,7 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b, const 
     SegmentPoint best_sp;
     grid.for_each_near(p, tol[i], [&](Index e) {
       const BorderEdge& be = b.edges[e];
-      if (be.patch == m.vertex_patch[v]) return;
+      if (be.patch == m.vertex_patch[v] || !grid.may_be_within(e, p, best)) return;
       const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
       if (sp.distance < best || (sp.distance == best && e < best_edge)) {
         best = sp.distance;

@@ -89,18 +89,20 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
         return;
       }
       if (be.patch == pv) {
-        if (dot(edge_in[e], inward[i]) <= -kFoldCos) {
+        if (dot(edge_in[e], inward[i]) <= -kFoldCos && grid.may_be_within(e, p, width)) {
           width = std::min(width,
                            closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]).distance);
         }
         return;
       }
+      const bool fold = dot(edge_in[e], inward[i]) > kFoldCos;
+      if (fold && !(std::abs(p.y) <= centre_reach && inward[i].y * edge_in[e].y < 0)) return;
+      Split& slot = fold ? folded : best;
+      if (!grid.may_be_within(e, p, slot.distance)) return;
       const Vec3d& a = m.positions[be.v0];
       const Vec3d& c = m.positions[be.v1];
       const SegmentPoint sp = closest_on_segment(p, a, c);
-      const bool fold = dot(edge_in[e], inward[i]) > kFoldCos;
       if (fold) {
-        if (!(std::abs(p.y) <= centre_reach && inward[i].y * edge_in[e].y < 0)) return;
         const Vec3d wedge = inward[i] - edge_in[e];
         const double w = norm(wedge);
         if (!(w >= kWedgeMin) && !(sp.distance <= kOnLine * norm(c - a))) return;
@@ -110,7 +112,6 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
           return;
         }
       }
-      Split& slot = fold ? folded : best;
       if (sp.distance < slot.distance || (sp.distance == slot.distance && e < slot.edge)) {
         slot = {e, sp.t, sp.distance};
       }
