@@ -74,7 +74,7 @@ std::vector<OpenGapVertex> find_open_gap_vertices(const Work& w, const EdgeAdjac
   parallel_for(0, nb, [&](std::size_t i) {
     const Index v = b.vertices[i];
     const PatchId pv = m.vertex_patch[v];
-    grid.for_each_near(
+    grid.for_each_within(
         m.positions[v], std::max(reach, options.gap_report_edges * b.edge_length[i]), [&](Index e) {
           const BorderEdge& be = b.edges[e];
           if (be.patch == pv || be.v0 == v || be.v1 == v) return;

@@ -111,6 +111,12 @@ SegmentGrid::SegmentGrid(std::span<const Vec3d> positions, std::span<const Borde
     keys_[i] = entry_key[entry_new2old[i]];
     order_[i] = entry_edge[entry_new2old[i]];
   }
+  entry_centre_.resize(order_.size());
+  entry_radius_.resize(order_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i) {
+    entry_centre_[i] = ball_centre_[order_[i]];
+    entry_radius_[i] = ball_radius_[order_[i]];
+  }
   // Occupied cells in an open-addressing table (load under 1/2): a query looks at 27 or more
   // cells, most of them empty, and a binary search over every entry cost more than the
   // distances.

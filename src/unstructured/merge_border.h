@@ -44,28 +44,19 @@ class SegmentGrid {
   // may come more than once).
   template <class F>
   void for_each_near(const Vec3d& p, double radius, F&& f) const {
-    if (order_.empty()) return;
-    std::int64_t lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::max<std::int64_t>(cell(p[a] - radius, a), 0);
-      hi[a] = std::min<std::int64_t>(cell(p[a] + radius, a), dims_[a] - 1);
-      if (lo[a] > hi[a]) return;
-    }
-    // A ball much wider than the cells: every entry is cheaper than every cell.
-    const double cells =
-        double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
-    if (cells > double(order_.size())) {
-      for (Index e : order_) f(e);
-      return;
-    }
-    for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-        for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
-          const std::uint64_t k = key(x, y, z);
-          for (std::size_t i = first(k); i < order_.size() && keys_[i] == k; ++i) f(order_[i]);
-        }
-      }
-    }
+    for_each_entry(p, radius, [&](std::size_t i) { f(order_[i]); });
+  }
+
+  // The same, less those whose bounding ball lies beyond the radius: what a nearest-edge search
+  // needs. The test reads the entries in cell order; on ship_449 it drops four fifths of what
+  // the cells give, before any edge is loaded.
+  template <class F>
+  void for_each_within(const Vec3d& p, double radius, F&& f) const {
+    for_each_entry(p, radius, [&](std::size_t i) {
+      const Vec3d q = p - entry_centre_[i];
+      const double r = radius + entry_radius_[i];
+      if (!(dot(q, q) > r * r)) f(order_[i]);
+    });
   }
 
   // False when edge e certainly lies farther than d from p: its bounding ball, grown by a margin
@@ -78,6 +69,32 @@ class SegmentGrid {
   }
 
  private:
+  // Calls g(entry) for the entries of every cell the box of the ball meets.
+  template <class G>
+  void for_each_entry(const Vec3d& p, double radius, G&& g) const {
+    if (order_.empty()) return;
+    std::int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max<std::int64_t>(cell(p[a] - radius, a), 0);
+      hi[a] = std::min<std::int64_t>(cell(p[a] + radius, a), dims_[a] - 1);
+      if (lo[a] > hi[a]) return;
+    }
+    // A ball much wider than the cells: every entry is cheaper than every cell.
+    const double cells =
+        double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
+    if (cells > double(order_.size())) {
+      for (std::size_t i = 0; i < order_.size(); ++i) g(i);
+      return;
+    }
+    for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
+          const std::uint64_t k = key(x, y, z);
+          for (std::size_t i = first(k); i < order_.size() && keys_[i] == k; ++i) g(i);
+        }
+      }
+    }
+  }
   std::int64_t cell(double v, int axis) const;
   std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return std::uint64_t(x) + std::uint64_t(dims_[0]) *
@@ -94,6 +111,8 @@ class SegmentGrid {
   std::vector<Index> order_;         // edge index per sorted key
   std::vector<Vec3d> ball_centre_;   // per edge: its midpoint
   std::vector<double> ball_radius_;  // per edge: half its length, plus the margin, m
+  std::vector<Vec3d> entry_centre_;  // the same per entry, in cell order
+  std::vector<double> entry_radius_;
   // Occupied cells: key and first entry, open addressing (a power-of-two table).
   static constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};
   std::vector<std::uint64_t> slot_key_;

@@ -154,7 +154,7 @@ std::vector<Index> seed_candidates(const SurfaceMesh& m, const Border& b, const 
     double best = std::numeric_limits<double>::infinity();
     Index best_edge = kInvalid;
     SegmentPoint best_sp;
-    grid.for_each_near(p, tol[i], [&](Index e) {
+    grid.for_each_within(p, tol[i], [&](Index e) {
       const BorderEdge& be = b.edges[e];
       if (be.patch == m.vertex_patch[v] || !grid.may_be_within(e, p, best)) return;
       const SegmentPoint sp = closest_on_segment(p, m.positions[be.v0], m.positions[be.v1]);
@@ -770,7 +770,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   SurfaceMesh& m = w.mesh;
   const double distance = options.overlap_distance > 0 ? options.overlap_distance : 1e-4 * length;
   // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
-  const SegmentGrid border_grid(m.positions, b.edges);
+  const SegmentGrid border_grid(m.positions, b.edges, 0, 2);
   const std::vector<Index> candidates = seed_candidates(m, b, border_grid, options, distance);
   if (candidates.empty()) return stats;
   // The seeds need only the faces around them; building a BVH over the whole hull would cost

@@ -80,7 +80,7 @@ std::vector<Split> nearest_edges(const SurfaceMesh& m, const Border& b, std::spa
     int own_count = 0;
     Split folded;
     folded.distance = std::numeric_limits<double>::infinity();
-    grid.for_each_near(p, reach, [&](Index e) {
+    grid.for_each_within(p, reach, [&](Index e) {
       const BorderEdge& be = b.edges[e];
       if (be.v0 == v || be.v1 == v) {
         if (be.patch == pv && own_count < 2) {
