@@ -24,6 +24,10 @@
 namespace hm::merge {
 namespace {
 
+// Seed grid cells of this many median border edges: a seed's ball (half a border edge) then
+// meets one or two cells along each axis, and the entries' ball test drops the rest.
+constexpr double kSeedGridMedianEdges = 2;
+
 // Normals of coincident layers agree to this (either orientation: patches may arrive flipped).
 constexpr double kMinNormalCos = 0.866;  // 30 degrees
 // The normal beside a point, either side of a knot line through it: this share of the domain
@@ -193,15 +197,25 @@ std::vector<BBox3d> patch_boxes(const SurfaceMesh& m, std::size_t patch_count, d
   return box;
 }
 
-// Longest edge of m's faces, m.
+// Longest edge of m's faces, m: the longest of each block of faces (each block its own slot),
+// then of those. A maximum is exact, so the blocks do not change it.
 double longest_edge(const SurfaceMesh& m) {
-  double longest = 0;
-  for (const Face& t : m.faces) {
-    for (int k = 0; k < 3; ++k) {
-      longest = std::max(longest, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
-    }
-  }
-  return longest;
+  constexpr std::size_t kBlock = 4096;
+  std::vector<double> longest((m.face_count() + kBlock - 1) / kBlock, 0.0);
+  parallel_for(
+      0, longest.size(),
+      [&](std::size_t b) {
+        const std::size_t end = std::min(m.face_count(), (b + 1) * kBlock);
+        for (std::size_t f = b * kBlock; f < end; ++f) {
+          const Face& t = m.faces[f];
+          for (int k = 0; k < 3; ++k) {
+            longest[b] =
+                std::max(longest[b], norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
+          }
+        }
+      },
+      1, 2);
+  return longest.empty() ? 0.0 : *std::max_element(longest.begin(), longest.end());
 }
 
 // The faces with keep[f] set, over all of m's vertices (unused ones are harmless).
@@ -238,24 +252,39 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
   std::vector<std::uint8_t> keep(m.face_count(), 0);
   parallel_for(0, m.face_count(), [&](std::size_t f) { keep[f] = needed[m.face_patch[f]]; });
   {
-    // Candidates as zero-length segments in the segment grid: "near a point" is then a query.
-    std::vector<BorderEdge> points(candidates.size());
+    // Each candidate as the diagonal of the box a face's reach can come from (its longest edge
+    // plus the margin, at most `widest`): a face then looks only at the one cell its centroid
+    // lies in, and most cells are empty. Until 2026-12-06 each face asked for the cells about
+    // it, and on ship_449 at 470,000 triangles (2,504 candidates, 262,000 faces asked) that was
+    // a tenth of the merge.
+    const double widest = longest_edge(m) + margin;
+    // Grown a little, so that the rounding of the corners cannot leave out a centroid at reach.
+    const double grown = widest * (1 + 1e-9);
+    const Vec3d half{grown, grown, grown};
+    std::vector<Vec3d> ends(2 * candidates.size());
+    std::vector<BorderEdge> boxes(candidates.size());
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-      points[i] = {candidates[i], candidates[i], kInvalid, m.vertex_patch[candidates[i]]};
+      ends[2 * i] = m.positions[candidates[i]] - half;
+      ends[2 * i + 1] = m.positions[candidates[i]] + half;
+      boxes[i] = {Index(2 * i), Index(2 * i + 1), kInvalid, m.vertex_patch[candidates[i]]};
     }
-    const SegmentGrid grid(m.positions, points, longest_edge(m) + margin);
+    const SegmentGrid grid(ends, boxes, widest, 0);
     parallel_for(0, m.face_count(), [&](std::size_t f) {
       if (!keep[f]) return;
       const Face& t = m.faces[f];
       const Vec3d c = face_centroid(m.positions, t);
-      double edge = 0;
-      for (int k = 0; k < 3; ++k) {
-        edge = std::max(edge, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
-      }
-      const double r = edge + margin;
+      double r = -1;  // the face's reach, once a candidate's box holds its centroid
       bool close = false;
-      grid.for_each_near(c, r, [&](Index i) {
-        close |= points[i].patch > m.face_patch[f] && norm(m.positions[points[i].v0] - c) <= r;
+      grid.for_each_near(c, 0, [&](Index i) {
+        if (close || !(boxes[i].patch > m.face_patch[f])) return;
+        if (r < 0) {
+          double edge = 0;
+          for (int k = 0; k < 3; ++k) {
+            edge = std::max(edge, norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]));
+          }
+          r = edge + margin;
+        }
+        close = norm(m.positions[candidates[i]] - c) <= r;
       });
       keep[f] = close;
     });
@@ -770,7 +799,7 @@ OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Bord
   SurfaceMesh& m = w.mesh;
   const double distance = options.overlap_distance > 0 ? options.overlap_distance : 1e-4 * length;
   // Collect: seeds, checked on the NURBS in parallel (each writes its own slot).
-  const SegmentGrid border_grid(m.positions, b.edges, 0, 2);
+  const SegmentGrid border_grid(m.positions, b.edges, 0, kSeedGridMedianEdges);
   const std::vector<Index> candidates = seed_candidates(m, b, border_grid, options, distance);
   if (candidates.empty()) return stats;
   // The seeds need only the faces around them; building a BVH over the whole hull would cost
