@@ -152,6 +152,8 @@ std::vector<ClosePair> weld_pairs(const SurfaceMesh& m, const Border& b, const B
       // hole filler, broke the stem line into four pieces.
       const bool wedge = mutual && across_wedge(p.a, p.b);
       const double limit = std::min({(wedge ? 2.0 : 1.0) * std::min(tol[p.a], tol[p.b]), cap});
+      // The search reached to the largest tolerance of all; most pairs are beyond their own.
+      if (!(p.distance <= limit)) continue;
       // Coincident vertices weld whatever their inward directions: the two halves of a hull meet
       // at a fine stem or keel well inside the fold test's 60 degrees, and a fold does not put
       // two patches' vertices at the same point.
@@ -167,9 +169,8 @@ std::vector<ClosePair> weld_pairs(const SurfaceMesh& m, const Border& b, const B
       // on the strip's border, not on the other's.
       if (!coincident && across_third_patch(p.a, p.b)) continue;
       if (!coincident && (held_off(p.a, p.b) || held_off(p.b, p.a))) continue;
-      if (p.distance <= limit &&
-          (coincident || touching || wedge ||
-           (dot(inward[p.a], inward[p.b]) <= kFoldCos && !through_thickness(p.a, p.b)))) {
+      if (coincident || touching || wedge ||
+          (dot(inward[p.a], inward[p.b]) <= kFoldCos && !through_thickness(p.a, p.b))) {
         pairs.push_back(p);
       }
     }
