@@ -460,17 +460,8 @@ HoleStats fill_small_holes(Work& w, const EdgeAdjacency& adj, const MergeOptions
     for (std::size_t i = 0; i < r.size(); ++i) left_open->push_back({r[i], r[(i + 1) % r.size()]});
   };
   HoleStats stats;
-  // The mesh's edges as sorted keys, collected at the first hole of four vertices.
-  std::vector<std::uint64_t> edge_keys;
-  const auto is_edge = [&](Index a, Index b) {
-    if (edge_keys.empty()) {
-      edge_keys.reserve(adj.edges.size());
-      for (const MeshEdge& e : adj.edges) edge_keys.push_back(std::uint64_t{e.v0} << 32 | e.v1);
-      std::sort(edge_keys.begin(), edge_keys.end());
-    }
-    const std::uint64_t k = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-    return std::binary_search(edge_keys.begin(), edge_keys.end(), k);
-  };
+  // The adjacency's edges are in key order, so a binary search finds one.
+  const auto is_edge = [&](Index a, Index b) { return find_edge(adj, a, b) != kInvalid; };
   std::vector<std::uint8_t> split(m.face_count(), 0);  // faces split or collapsed in this pass
   // Vertices of the holes closed by a collapse: a later hole through them waits for the next
   // pass, whose adjacency is current.
