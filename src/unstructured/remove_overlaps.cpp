@@ -258,14 +258,16 @@ SurfaceMesh faces_near(const SurfaceMesh& m, std::span<const Index> candidates,
     // it, and on ship_449 at 470,000 triangles (2,504 candidates, 262,000 faces asked) that was
     // a tenth of the merge.
     const double widest = longest_edge(m) + margin;
-    // Grown a little, so that the rounding of the corners cannot leave out a centroid at reach.
-    const double grown = widest * (1 + 1e-9);
-    const Vec3d half{grown, grown, grown};
     std::vector<Vec3d> ends(2 * candidates.size());
     std::vector<BorderEdge> boxes(candidates.size());
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-      ends[2 * i] = m.positions[candidates[i]] - half;
-      ends[2 * i + 1] = m.positions[candidates[i]] + half;
+      const Vec3d& p = m.positions[candidates[i]];
+      // Grown by 1e-9 of the reach and of the coordinates, far above the rounding of the
+      // corners and of the distance, so that no centroid within reach falls outside.
+      const double grown =
+          widest + 1e-9 * (widest + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+      ends[2 * i] = p - Vec3d{grown, grown, grown};
+      ends[2 * i + 1] = p + Vec3d{grown, grown, grown};
       boxes[i] = {Index(2 * i), Index(2 * i + 1), kInvalid, m.vertex_patch[candidates[i]]};
     }
     const SegmentGrid grid(ends, boxes, widest, 0);
