@@ -48,8 +48,8 @@ class SegmentGrid {
   }
 
   // The same, less those whose bounding ball lies beyond the radius: what a nearest-edge search
-  // needs. The test reads the entries in cell order; on ship_449 it drops four fifths of what
-  // the cells give, before any edge is loaded.
+  // needs. The test reads the entries in cell order, so most of what the cells give is dropped
+  // before any edge is loaded.
   template <class F>
   void for_each_within(const Vec3d& p, double radius, F&& f) const {
     for_each_entry(p, radius, [&](std::size_t i) {
