@@ -1,8 +1,11 @@
 #include "mesh/adjacency.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -149,6 +152,109 @@ TEST(Adjacency, BoundarySlotsAreThoseOfTheBoundaryEdges) {
   ASSERT_EQ(slots.size(), adj.boundary_edges.size());
   for (std::size_t i = 0; i < slots.size(); ++i) {
     EXPECT_EQ(slots[i], adj.edges[adj.boundary_edges[i]].first_slot);
+  }
+}
+
+// A mesh big enough for the build's parallel loops to split (a 300 x 80 grid of quads and
+// triangles, about 40,000 faces), with holes, fins, faces wound against the rest, faces with a
+// repeated vertex, and the faces in a scrambled order.
+std::vector<Face> large_awkward_faces(std::size_t& vertex_count) {
+  constexpr Index kNx = 301, kNy = 81;
+  std::vector<Face> faces;
+  std::uint32_t state = 777;
+  const auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  for (Index j = 0; j + 1 < kNy; ++j) {
+    for (Index i = 0; i + 1 < kNx; ++i) {
+      const Index a = j * kNx + i, b = a + 1, c = a + kNx + 1, d = a + kNx;
+      const std::uint32_t r = next() >> 24;
+      if (r < 3) continue;  // a hole
+      if (r < 80) {
+        faces.push_back({a, b, c, d});
+      } else {
+        faces.push_back({a, b, c, kInvalid});
+        faces.push_back({a, c, d, kInvalid});
+      }
+      if (r > 250) faces.push_back({a, c, kNx * kNy + (r & 3), kInvalid});  // a fin or a third use
+      if (r == 249) faces.push_back({a, a, b, kInvalid});                   // a collapsed corner
+    }
+  }
+  for (Face& f : faces)
+    if ((next() >> 28) < 2) std::swap(f[1], f[2]);
+  for (std::size_t f = faces.size(); f > 1; --f) std::swap(faces[f - 1], faces[next() % f]);
+  vertex_count = kNx * kNy + 4;
+  return faces;
+}
+
+// The adjacency as its header defines it, from a map of each edge's slots.
+EdgeAdjacency reference_adjacency(std::span<const Face> faces) {
+  std::map<std::pair<Index, Index>, std::vector<Index>> uses;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const int n = corner_count(faces[f]);
+    for (int c = 0; c < n; ++c) {
+      const Index a = faces[f][c], b = faces[f][(c + 1) % n];
+      if (a != b) uses[{std::min(a, b), std::max(a, b)}].push_back(Index(4 * f + c));
+    }
+  }
+  EdgeAdjacency r;
+  r.slot_edge.assign(4 * faces.size(), kInvalid);
+  r.opposite_face.assign(4 * faces.size(), kInvalid);
+  r.opposite_corner.assign(4 * faces.size(), 0xff);
+  const auto tail = [&](Index slot) { return faces[slot / 4][slot % 4]; };
+  for (const auto& [key, slots] : uses) {
+    const Index id = Index(r.edges.size());
+    MeshEdge e;
+    e.v0 = key.first;
+    e.v1 = key.second;
+    e.first_slot = slots[0];
+    e.uses = Index(slots.size());
+    for (Index s : slots) r.slot_edge[s] = id;
+    if (slots.size() == 1) r.boundary_edges.push_back(id);
+    if (slots.size() > 2) r.nonmanifold_edges.push_back(id);
+    if (slots.size() == 2) {
+      e.same_direction = tail(slots[0]) == tail(slots[1]);
+      if (e.same_direction) r.inconsistent_edges.push_back(id);
+      r.opposite_face[slots[0]] = slots[1] / 4;
+      r.opposite_corner[slots[0]] = std::uint8_t(slots[1] % 4);
+      r.opposite_face[slots[1]] = slots[0] / 4;
+      r.opposite_corner[slots[1]] = std::uint8_t(slots[0] % 4);
+    }
+    r.edges.push_back(e);
+  }
+  return r;
+}
+
+TEST(Adjacency, LargeMeshMatchesTheDefinitionOnOneAndManyThreads) {
+  std::size_t nv = 0;
+  const std::vector<Face> faces = large_awkward_faces(nv);
+  ASSERT_GT(faces.size(), 35'000u);
+  EdgeAdjacency one;
+  {
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+    one = build_edge_adjacency(faces, nv);
+  }
+  const EdgeAdjacency many = build_edge_adjacency(faces, nv);
+  ASSERT_FALSE(one.boundary_edges.empty());
+  ASSERT_FALSE(one.nonmanifold_edges.empty());
+  ASSERT_FALSE(one.inconsistent_edges.empty());
+  expect_same_adjacency(one, many);
+  EdgeAdjacency ref = reference_adjacency(faces);
+  ref.boundary_loops = one.boundary_loops;  // the loops are chained alike; the test above checks
+  expect_same_adjacency(one, ref);
+}
+
+// With several bad faces, the first one is named.
+TEST(Adjacency, MissingVertexNamesTheFirstBadFaceOfALargeMesh) {
+  std::size_t nv = 0;
+  std::vector<Face> faces = large_awkward_faces(nv);
+  faces[30'001][2] = Index(nv + 5);
+  faces[20'002][1] = Index(nv + 9);
+  try {
+    build_edge_adjacency(faces, nv);
+    FAIL() << "no GeometryError";
+  } catch (const GeometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 20002 names vertex " + std::to_string(nv + 9)),
+              std::string::npos)
+        << e.what();
   }
 }
 
