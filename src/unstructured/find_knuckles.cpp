@@ -32,6 +32,10 @@ constexpr double kPush = 1e-3;
 // (u, v) from elsewhere in the domain, which misses by far more; a coarse mesh's chord error
 // (the 3D points are off the surface) stays below it.
 constexpr double kUvConsistency = 0.5;
+// A corner's (u, v) is its own when the surface there lies within this fraction of the face's
+// size of the corner: the tessellation puts its vertices on the surface, and the merge moves
+// some across gaps (a welded vertex at the mean of its cluster) without new (u, v).
+constexpr double kCornerOnSurface = 1e-4;
 // A parameter whose derivative is below this fraction of the other's is collapsed there.
 constexpr double kCollapsed = 1e-9;
 // Distance from a C0 knot line, as a fraction of the domain, at which a one-sided normal is taken.
@@ -87,9 +91,11 @@ bool face_uv_usable(const SurfaceMesh& mesh, const Face& face, PatchId patch) {
 
 // The face's corner (u, v), with a coordinate that does not move the point (a corner on a
 // collapsed row or column: su or sv vanishes there, so its welded vertex may carry any value)
-// replaced by the mean of the other corners' values.
-std::array<Vec2d, 4> corner_parameters(const SurfaceMesh& mesh, const NurbsSurface& s,
-                                       const Face& face) {
+// replaced by the mean of the other corners' values; nullopt when a corner's (u, v) maps further
+// than `tol` from the corner (a vertex the merge moved across a gap keeps the (u, v) it had).
+std::optional<std::array<Vec2d, 4>> corner_parameters(const SurfaceMesh& mesh,
+                                                      const NurbsSurface& s, const Face& face,
+                                                      double tol) {
   const int n = corner_count(face);
   std::array<Vec2d, 4> uv{};
   std::array<bool, 4> free_u{}, free_v{};
@@ -98,6 +104,7 @@ std::array<Vec2d, 4> corner_parameters(const SurfaceMesh& mesh, const NurbsSurfa
   for (int c = 0; c < n; ++c) {
     uv[c] = mesh.vertex_uv[face[c]];
     const SurfaceDerivs d = evaluate_derivs(s, uv[c].x, uv[c].y, 1);
+    if (!(norm(d.p - mesh.positions[face[c]]) <= tol)) return std::nullopt;
     const double su = norm(d.su), sv = norm(d.sv);
     free_u[c] = su <= kCollapsed * sv;
     free_v[c] = sv <= kCollapsed * su;
@@ -138,8 +145,12 @@ Vec2d side_parameter(const SurfaceMesh& mesh, const SmoothPieces& pieces, const 
   const Vec3d centroid = face_centroid(mesh.positions, face);
   Vec2d uv, uv_centroid;
   bool have = false;
-  if (face_uv_usable(mesh, face, patch)) {
-    const std::array<Vec2d, 4> corner = corner_parameters(mesh, s, face);
+  const double size = std::max(norm(centroid - mid), norm(mesh.positions[b] - mesh.positions[a]));
+  const std::optional<std::array<Vec2d, 4>> corners =
+      face_uv_usable(mesh, face, patch) ? corner_parameters(mesh, s, face, kCornerOnSurface * size)
+                                        : std::nullopt;
+  if (corners) {
+    const std::array<Vec2d, 4>& corner = *corners;
     const int n = corner_count(face);
     Vec2d uv_mid;
     for (int c = 0; c < n; ++c) {
@@ -147,8 +158,7 @@ Vec2d side_parameter(const SurfaceMesh& mesh, const SmoothPieces& pieces, const 
       if (face[c] == a || face[c] == b) uv_mid += 0.5 * corner[c];
     }
     uv_centroid *= 1.0 / n;
-    const double tol = kUvConsistency *
-                       std::max(norm(centroid - mid), norm(mesh.positions[b] - mesh.positions[a]));
+    const double tol = kUvConsistency * size;
     if (norm(evaluate(s, uv_mid.x, uv_mid.y) - mid) <= tol &&
         norm(evaluate(s, uv_centroid.x, uv_centroid.y) - centroid) <= tol) {
       uv = uv_mid + kPush * (uv_centroid - uv_mid);

@@ -241,6 +241,28 @@ TEST(MergeGaps, AKnuckleAcrossAGapClosesAtItsCorner) {
   EXPECT_LT(off, 1e-3) << "a knuckle vertex off the transom's plane";
 }
 
+// Full chine hulls of 2 and 3 patches with 0.1 m gaps, at the default size: the halves' bottom
+// corners at the forefoot weld at the mean of the two, where both chines, the keel and the stem
+// meet. The welded vertex kept the (u, v) of its own patch's corner, which lies 0.5 m aft and
+// half a girth away on that patch, and the knuckle test trusted it: on that side the edge from
+// the chine to the weld showed no jump on the NURBS (on the other side, whose faces use a
+// vertex of another patch, the point was projected, and the jump was 10 degrees), so one chine
+// turned up the stem and met it 0.9 m above the forefoot (9 lines where the clean hull has 8).
+// A corner's (u, v) is now used only where it maps onto the corner.
+TEST(MergeGaps, BothChinesMeetTheStemAtTheForefootAcrossAGap) {
+  for (const int patches : {2, 3}) {
+    SCOPED_TRACE(patches);
+    const Merged m =
+        merge_of(generate_hull(with_gaps(HullKind::kChine, patches, /*full=*/true, 0.1)).patches);
+    const Merged ref =
+        merge_of(generate_hull(with_gaps(HullKind::kChine, patches, /*full=*/true, 0)).patches);
+    const FeatureSet f = features_of(m), f_ref = features_of(ref);
+    ASSERT_EQ(f_ref.knuckles.size(), 8u);
+    EXPECT_EQ(f.knuckles.size(), f_ref.knuckles.size());
+    EXPECT_NEAR(f.knuckle_length(), f_ref.knuckle_length(), 1e-2 * f_ref.knuckle_length());
+  }
+}
+
 // The full Wigley of 2 patches (its halves) with 0.1 m gaps: each half stops 0.05 m from the
 // centre plane, 0.25 m aft of the stem where the stem is fine. At the deck the halves' corners
 // were left apart (their borders turn there into the deck edge, so no edge of the other lay
