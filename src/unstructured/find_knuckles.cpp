@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -40,6 +41,13 @@ constexpr double kCornerOnSurface = 1e-4;
 constexpr double kCollapsed = 1e-9;
 // Distance from a C0 knot line, as a fraction of the domain, at which a one-sided normal is taken.
 constexpr double kKnotOffset = 1e-9;
+// A face whose centroid's (u, v) lies within this fraction of the domain of a C0 knot line is on
+// it, not on one side, and which smooth piece holds it is a matter of rounding. Newton started
+// from a corner on a crease stops on the crease: a bottom face at a full hull's transom whose
+// keel corner is the other half's vertex is projected from its corners on the transom's edge,
+// and took the transom's normal (the generated 2-patch chine hull's port transom edge stopped
+// 0.43 m short of the keel). Its side is then the piece whose normal its own agrees with.
+constexpr double kOnBreak = 1e-7;
 // A candidate is confirmed when the NURBS normals jump by at least this fraction of the
 // threshold: the mesh dihedral adds the discretisation angle of both faces to the true jump.
 constexpr double kConfirmFraction = 0.5;
@@ -76,6 +84,16 @@ double clamp_to_piece(double t, double inside, const std::vector<double>& breaks
   const double eps = kKnotOffset * (breaks.back() - breaks.front());
   if (b - a <= 2 * eps) return std::clamp(t, a, b);
   return std::clamp(t, a + eps, b - eps);
+}
+
+// The interior break that `inside` lies on (within kOnBreak of the range), or NaN.
+double break_at(double inside, const std::vector<double>& breaks) {
+  if (breaks.size() < 3) return std::numeric_limits<double>::quiet_NaN();
+  const double tol = kOnBreak * (breaks.back() - breaks.front());
+  for (std::size_t i = 1; i + 1 < breaks.size(); ++i) {
+    if (std::abs(inside - breaks[i]) <= tol) return breaks[i];
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 bool face_uv_usable(const SurfaceMesh& mesh, const Face& face, PatchId patch) {
@@ -136,9 +154,14 @@ Vec2d project(const SurfaceMesh& mesh, const NurbsSurface& s, const Face& face, 
 }
 
 // (u, v) on face f's patch of a point inside f next to the midpoint of its edge a-b, on the
-// smooth piece of the patch that holds the face's centroid.
-Vec2d side_parameter(const SurfaceMesh& mesh, const SmoothPieces& pieces, const NurbsSurface& s,
-                     Index f, Index a, Index b) {
+// smooth piece of the patch that holds the face's centroid; and the C0 knot lines (u, v; NaN
+// for none) that the centroid lies on, where that piece is not settled.
+struct SidePoint {
+  Vec2d uv;
+  Vec2d on_break;
+};
+SidePoint side_parameter(const SurfaceMesh& mesh, const SmoothPieces& pieces, const NurbsSurface& s,
+                         Index f, Index a, Index b) {
   const Face& face = mesh.faces[f];
   const PatchId patch = mesh.face_patch[f];
   const Vec3d mid = 0.5 * (mesh.positions[a] + mesh.positions[b]);
@@ -169,22 +192,42 @@ Vec2d side_parameter(const SurfaceMesh& mesh, const SmoothPieces& pieces, const 
     uv = project(mesh, s, face, patch, mid + kPush * (centroid - mid));
     uv_centroid = project(mesh, s, face, patch, centroid);
   }
-  return {clamp_to_piece(uv.x, uv_centroid.x, pieces.u),
-          clamp_to_piece(uv.y, uv_centroid.y, pieces.v)};
+  return {{clamp_to_piece(uv.x, uv_centroid.x, pieces.u),
+           clamp_to_piece(uv.y, uv_centroid.y, pieces.v)},
+          {break_at(uv_centroid.x, pieces.u), break_at(uv_centroid.y, pieces.v)}};
 }
 
-// Unit NURBS normal on face f's side of edge a-b, signed like face_normal; nullopt when the
-// surface has no usable normal there.
+// Unit NURBS normal on face f's side of edge a-b, signed by how its patch faces the mesh (with
+// `facing`, where that is known), else like face_n; nullopt when the surface has no usable
+// normal there. Not by the face alone: a sliver standing on its edge along a seam the snap
+// closed has a normal square to the surface, whose sign says nothing, and a face folded over
+// has it backwards.
 std::optional<Vec3d> side_normal(const SurfaceMesh& mesh, std::span<const Patch> patches,
-                                 std::span<const SmoothPieces> pieces, Index f, Index a, Index b,
-                                 const Vec3d& face_n) {
+                                 std::span<const SmoothPieces> pieces, const PatchFacing* facing,
+                                 Index f, Index a, Index b, const Vec3d& face_n) {
   const PatchId patch = mesh.face_patch[f];
   const NurbsSurface& s = patches[patch].surface;
-  const Vec2d uv = side_parameter(mesh, pieces[patch], s, f, a, b);
-  Vec3d n = normal(s, uv.x, uv.y);
-  if (!is_finite(n) || squared_norm(n) == 0) return std::nullopt;
-  if (dot(n, face_n) < 0) n = -n;
-  return n;
+  const SidePoint side = side_parameter(mesh, pieces[patch], s, f, a, b);
+  // Where the centroid lies on a knot line, the point on either side of it: the face's side is
+  // the one whose normal agrees with the face's best (either way round).
+  const auto either_side = [](double t, double on_break, const std::vector<double>& breaks) {
+    if (!std::isfinite(on_break)) return std::vector<double>{t};
+    const double d = kKnotOffset * (breaks.back() - breaks.front());
+    return std::vector<double>{on_break - d, on_break + d};
+  };
+  Vec3d n;
+  double best = -1;
+  for (const double u : either_side(side.uv.x, side.on_break.x, pieces[patch].u)) {
+    for (const double v : either_side(side.uv.y, side.on_break.y, pieces[patch].v)) {
+      const Vec3d c = normal(s, u, v);
+      if (!is_finite(c) || squared_norm(c) == 0) continue;
+      if (const double fit = std::abs(dot(c, face_n)); fit > best) best = fit, n = c;
+    }
+  }
+  if (best < 0) return std::nullopt;
+  double sign = facing ? facing->of(patch) : 0;
+  if (sign == 0) sign = dot(n, face_n) < 0 ? -1 : 1;
+  return sign * n;
 }
 
 // A hint with its distance resolved and its polyline's box, so that most edges are turned down
@@ -295,6 +338,7 @@ struct ExtendContext {
   const EdgeAdjacency& adjacency;
   std::span<const Patch> patches;
   std::span<const SmoothPieces> pieces;
+  const PatchFacing& facing;
   std::span<const PreparedHint> suppress;
   double min_jump;  // degrees
 };
@@ -314,7 +358,10 @@ Index continuation(const ExtendContext& c, const VertexEdges& around, Index v, I
   std::sort(options.begin(), options.end());
   for (const auto& [turn, e] : options) {
     if (any_matches(c.suppress, c.mesh, c.adjacency, e)) continue;
-    if (nurbs_normal_jump_deg(c.mesh, c.adjacency, c.patches, c.pieces, e) >= c.min_jump) return e;
+    if (nurbs_normal_jump_deg(c.mesh, c.adjacency, c.patches, c.pieces, c.facing, e) >=
+        c.min_jump) {
+      return e;
+    }
   }
   return kInvalid;
 }
@@ -419,16 +466,74 @@ std::vector<SmoothPieces> smooth_pieces(std::span<const Patch> patches) {
   return out;
 }
 
+PatchFacing::PatchFacing(const SurfaceMesh& mesh, std::span<const Patch> patches)
+    : mesh_(mesh),
+      patches_(patches),
+      samples_(patches.size()),
+      once_(std::make_unique<std::once_flag[]>(patches.size())),
+      facing_(patches.size(), 0) {
+  // A few faces spread over each patch, in face order: count, then pick.
+  std::vector<Index> count(patches.size(), 0), seen(patches.size(), 0);
+  for (const PatchId p : mesh.face_patch) {
+    if (p < count.size()) ++count[p];
+  }
+  for (auto& s : samples_) s.fill(kInvalid);
+  std::vector<int> taken(patches.size(), 0);
+  for (std::size_t f = 0; f < mesh.face_patch.size(); ++f) {
+    const PatchId p = mesh.face_patch[f];
+    if (p >= count.size()) continue;
+    // Rank k * count / kSamples is taken; ranks that repeat (fewer faces than samples) once.
+    const auto rank = [&](int k) { return std::uint64_t{count[p]} * k / kSamples; };
+    int& k = taken[p];
+    if (k < kSamples && seen[p] == rank(k)) {
+      samples_[p][k] = Index(f);
+      while (k < kSamples && rank(k) <= seen[p]) ++k;
+    }
+    ++seen[p];
+  }
+}
+
+double PatchFacing::of(PatchId p) const {
+  std::call_once(once_[p], [&] {
+    const NurbsSurface& s = patches_[p].surface;
+    int votes = 0;
+    for (const Index f : samples_[p]) {
+      if (f == kInvalid || !face_uv_usable(mesh_, mesh_.faces[f], p)) continue;
+      const Face& face = mesh_.faces[f];
+      const int n = corner_count(face);
+      double longest = 0;
+      for (int c = 0; c < n; ++c) {
+        longest =
+            std::max(longest, norm(mesh_.positions[face[(c + 1) % n]] - mesh_.positions[face[c]]));
+      }
+      const auto corners = corner_parameters(mesh_, s, face, kCornerOnSurface * longest);
+      if (!corners) continue;
+      Vec2d uv;
+      for (int c = 0; c < n; ++c) uv += (*corners)[c];
+      uv *= 1.0 / n;
+      const double d = dot(normal(s, uv.x, uv.y), face_normal(mesh_.positions, face));
+      votes += d > 0 ? 1 : d < 0 ? -1 : 0;
+    }
+    facing_[p] = votes > 0 ? 1 : votes < 0 ? -1 : 0;
+  });
+  return facing_[p];
+}
+
 double nurbs_normal_jump_deg(const SurfaceMesh& mesh, const EdgeAdjacency& adjacency,
                              std::span<const Patch> patches, std::span<const SmoothPieces> pieces,
-                             Index e) {
+                             const PatchFacing& facing, Index e) {
   const MeshEdge& me = adjacency.edges[e];
   const EdgeFaces ef = edge_faces(adjacency, e);
   const Vec3d fn0 = face_normal(mesh.positions, mesh.faces[ef.f0]);
   Vec3d fn1 = face_normal(mesh.positions, mesh.faces[ef.f1]);
+  // Two faces wound against each other (a mesh not yet oriented): whether the face or its whole
+  // patch is turned is not known here, so both sides take their faces' signs, the second turned.
   if (ef.flipped) fn1 = -fn1;
-  const std::optional<Vec3d> n0 = side_normal(mesh, patches, pieces, ef.f0, me.v0, me.v1, fn0);
-  const std::optional<Vec3d> n1 = side_normal(mesh, patches, pieces, ef.f1, me.v0, me.v1, fn1);
+  const PatchFacing* by_patch = ef.flipped ? nullptr : &facing;
+  const std::optional<Vec3d> n0 =
+      side_normal(mesh, patches, pieces, by_patch, ef.f0, me.v0, me.v1, fn0);
+  const std::optional<Vec3d> n1 =
+      side_normal(mesh, patches, pieces, by_patch, ef.f1, me.v0, me.v1, fn1);
   if (!n0 || !n1) return -1;
   return angle_deg(*n0, *n1);
 }
@@ -443,6 +548,7 @@ KnuckleEdges find_knuckles(const SurfaceMesh& mesh, const EdgeAdjacency& adjacen
   const bool confirm = options.confirm_on_nurbs;
   const std::vector<SmoothPieces> pieces =
       confirm ? smooth_pieces(patches) : std::vector<SmoothPieces>{};
+  const PatchFacing facing(mesh, confirm ? patches : std::span<const Patch>{});
 
   // The cut puts its vertices on the plane exactly (to rounding in a leaning frame); 1e-9 L only
   // absorbs a file whose own vertices lie there.
@@ -462,7 +568,8 @@ KnuckleEdges find_knuckles(const SurfaceMesh& mesh, const EdgeAdjacency& adjacen
     if (dihedral_angle_deg(mesh, adjacency, e) > threshold) {
       f |= kCandidate;
       // An unknown NURBS normal (negative jump) leaves the mesh's verdict standing.
-      const double jump = confirm ? nurbs_normal_jump_deg(mesh, adjacency, patches, pieces, e) : -1;
+      const double jump =
+          confirm ? nurbs_normal_jump_deg(mesh, adjacency, patches, pieces, facing, e) : -1;
       f |= jump < 0 || jump >= kConfirmFraction * threshold ? kKnuckle : kRejected;
     }
     if (any_matches(add, mesh, adjacency, e)) f |= kKnuckle;
@@ -471,7 +578,8 @@ KnuckleEdges find_knuckles(const SurfaceMesh& mesh, const EdgeAdjacency& adjacen
     flags[i] = static_cast<std::uint8_t>(f);
   });
   if (confirm) {
-    extend_lines({mesh, adjacency, patches, pieces, suppress, kExtendFraction * threshold}, flags);
+    extend_lines({mesh, adjacency, patches, pieces, facing, suppress, kExtendFraction * threshold},
+                 flags);
   }
   drop_doubled_sides(mesh, adjacency, flags);
 

@@ -3,8 +3,11 @@
 // src/unstructured (find_features is the public entry).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -33,13 +36,34 @@ struct SmoothPieces {
 };
 std::vector<SmoothPieces> smooth_pieces(std::span<const Patch> patches);
 
+// How each patch's NURBS normal (su x sv) faces against the mesh's faces of that patch: +1 the
+// same way, -1 reversed, 0 unknown (none of its sampled faces has corners with their own (u, v)
+// on the surface). Found on first use (thread-safe) from a few faces spread over the patch, by
+// majority, so that one folded face does not decide.
+class PatchFacing {
+ public:
+  PatchFacing(const SurfaceMesh& mesh, std::span<const Patch> patches);
+  double of(PatchId p) const;
+
+ private:
+  static constexpr int kSamples = 5;
+  const SurfaceMesh& mesh_;
+  std::span<const Patch> patches_;
+  std::vector<std::array<Index, kSamples>> samples_;  // face ids, kInvalid where fewer
+  std::unique_ptr<std::once_flag[]> once_;
+  mutable std::vector<double> facing_;
+};
+
 // Angle in degrees between the exact surface normals on either side of interior edge e, each
 // taken on its face's patch next to the edge midpoint, on the smooth piece holding the face's
-// centroid (one-sided, so a knot of full multiplicity inside a patch shows its jump), and signed
-// like its face normal (patches may be reversed). Negative when no normal can be had.
+// centroid (one-sided, so a knot of full multiplicity inside a patch shows its jump). Each is
+// signed by how its patch faces the mesh (patches may be reversed), not by its own face (a
+// sliver standing on its edge at a seam has a normal square to the surface, a folded face one
+// backwards); like its face where that is unknown, or where the two faces are wound against
+// each other. Negative when no normal can be had.
 double nurbs_normal_jump_deg(const SurfaceMesh& mesh, const EdgeAdjacency& adjacency,
                              std::span<const Patch> patches, std::span<const SmoothPieces> pieces,
-                             Index e);
+                             const PatchFacing& facing, Index e);
 
 struct KnuckleEdges {
   std::vector<std::uint8_t> edge_knuckle;  // per undirected edge: 1 if a knuckle

@@ -263,6 +263,52 @@ TEST(MergeGaps, BothChinesMeetTheStemAtTheForefootAcrossAGap) {
   }
 }
 
+// The half round-bilge hull of 24 patches with 0.1 m gaps, at 40,000 triangles: where the snap
+// closed the seams across the bilge (x = 8.33, 16.67, 25 and 33.3 m) it left slivers standing on
+// their edges, 1 mm wide and 0.3 m long, at 96 degrees to their neighbours. The NURBS check
+// took each side's normal signed like its face, and a sliver's normal lies square to the
+// surface, so its sign was a coin toss: the check saw a 180-degree jump, and each seam had a
+// knuckle line (5 lines, 8.74 m, where the clean hull has its transom's edge, 7.45 m). The sides
+// now take their sign from how their patch faces the mesh.
+TEST(MergeGaps, SliversStandingOnClosedSeamsMakeNoKnuckle) {
+  const HullSpec spec = with_gaps(HullKind::kRoundBilge, 24, /*full=*/false, 0.1);
+  const std::vector<Patch> broken = generate_hull(spec).patches;
+  const std::vector<Patch> clean = generated(HullKind::kRoundBilge, 24).patches;
+  const Merged m = merge_of(broken, edge_length_for_triangles(broken, 40000));
+  const Merged ref = merge_of(clean, edge_length_for_triangles(clean, 40000));
+  const FeatureSet f = features_of(m), f_ref = features_of(ref);
+  ASSERT_EQ(f_ref.knuckles.size(), 1u);
+  EXPECT_EQ(f.knuckles.size(), 1u);
+  EXPECT_NEAR(f.knuckle_length(), f_ref.knuckle_length(), 1e-3 * f_ref.knuckle_length());
+}
+
+// The clean full chine hull of 2 patches (its halves, each with its transom inside): the port
+// transom's bottom edge stopped 0.43 m short of the keel (4.0 m, the starboard one 4.42 m). The
+// bottom faces there have a keel corner of the other half, so their points are projected onto
+// the patch, from their corners on the transom's edge: Newton stopped on that crease, and the
+// face took the transom's normal. A face whose centroid lies on a crease now takes the side whose
+// normal agrees with its own. The halves' lines are now alike.
+TEST(MergeGaps, BothHalvesOfACleanFullChineHullHaveTheSameKnuckles) {
+  const Merged m =
+      merge_of(generate_hull(with_gaps(HullKind::kChine, 2, /*full=*/true, 0)).patches);
+  const FeatureSet f = features_of(m);
+  double port = 0, starboard = 0;
+  for (const FeatureLine& line : f.knuckles) {
+    double length = 0, y = 0;
+    for (std::size_t k = 0; k + 1 < line.vertices.size(); ++k) {
+      const Vec3d& a = m.merged.mesh.positions[line.vertices[k]];
+      const Vec3d& b = m.merged.mesh.positions[line.vertices[k + 1]];
+      length += norm(b - a);
+      y += 0.5 * (a.y + b.y) * norm(b - a);
+    }
+    if (y < -1e-6 * length) port += length;
+    if (y > 1e-6 * length) starboard += length;
+  }
+  EXPECT_EQ(f.knuckles.size(), 8u);
+  EXPECT_GT(port, 100.0);
+  EXPECT_NEAR(port, starboard, 1e-3 * starboard);
+}
+
 // The full Wigley of 2 patches (its halves) with 0.1 m gaps: each half stops 0.05 m from the
 // centre plane, 0.25 m aft of the stem where the stem is fine. At the deck the halves' corners
 // were left apart (their borders turn there into the deck edge, so no edge of the other lay
