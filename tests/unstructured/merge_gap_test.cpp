@@ -208,6 +208,21 @@ FeatureSet features_of(const Merged& m) {
   return find_features(m.merged.mesh, m.adj, m.patches, {});
 }
 
+// A generated hull with gaps of up to `gap` m, and the same hull without, each merged at
+// `triangles` fine triangles (0: the default size).
+struct GappedAndClean {
+  Merged gapped, clean;
+};
+GappedAndClean gapped_and_clean(HullKind kind, int patches, bool full, double gap,
+                                std::size_t triangles = 0) {
+  const auto merged = [&](double g) {
+    std::vector<Patch> p = generate_hull(with_gaps(kind, patches, full, g)).patches;
+    const double edge = triangles > 0 ? edge_length_for_triangles(p, triangles) : 0.0;
+    return merge_of(std::move(p), edge);
+  };
+  return {merged(gap), merged(0)};
+}
+
 // The half round-bilge hull of 2 patches (the transom and the rest) with 0.1 m gaps, at 40,000
 // triangles: each patch stops up to 0.05 m short of the transom's edge, the side on the side, the
 // transom on the transom. The gap was closed on the chamfer between the two borders, which split
@@ -218,11 +233,7 @@ FeatureSet features_of(const Merged& m) {
 // vertex joins the end its edge runs on to, and a pair of vertices at a knuckle closes at the
 // corner of their two surfaces.
 TEST(MergeGaps, AKnuckleAcrossAGapClosesAtItsCorner) {
-  const HullSpec spec = with_gaps(HullKind::kRoundBilge, 2, /*full=*/false, 0.1);
-  const std::vector<Patch> broken = generate_hull(spec).patches;
-  const std::vector<Patch> clean = generated(HullKind::kRoundBilge, 2).patches;
-  const Merged m = merge_of(broken, edge_length_for_triangles(broken, 40000));
-  const Merged ref = merge_of(clean, edge_length_for_triangles(clean, 40000));
+  const auto [m, ref] = gapped_and_clean(HullKind::kRoundBilge, 2, /*full=*/false, 0.1, 40000);
   EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
   EXPECT_TRUE(m.adj.inconsistent_edges.empty());
   const FeatureSet f = features_of(m), f_ref = features_of(ref);
@@ -252,10 +263,7 @@ TEST(MergeGaps, AKnuckleAcrossAGapClosesAtItsCorner) {
 TEST(MergeGaps, BothChinesMeetTheStemAtTheForefootAcrossAGap) {
   for (const int patches : {2, 3}) {
     SCOPED_TRACE(patches);
-    const Merged m =
-        merge_of(generate_hull(with_gaps(HullKind::kChine, patches, /*full=*/true, 0.1)).patches);
-    const Merged ref =
-        merge_of(generate_hull(with_gaps(HullKind::kChine, patches, /*full=*/true, 0)).patches);
+    const auto [m, ref] = gapped_and_clean(HullKind::kChine, patches, /*full=*/true, 0.1);
     const FeatureSet f = features_of(m), f_ref = features_of(ref);
     ASSERT_EQ(f_ref.knuckles.size(), 8u);
     EXPECT_EQ(f.knuckles.size(), f_ref.knuckles.size());
@@ -271,11 +279,7 @@ TEST(MergeGaps, BothChinesMeetTheStemAtTheForefootAcrossAGap) {
 // knuckle line (5 lines, 8.74 m, where the clean hull has its transom's edge, 7.45 m). The sides
 // now take their sign from how their patch faces the mesh.
 TEST(MergeGaps, SliversStandingOnClosedSeamsMakeNoKnuckle) {
-  const HullSpec spec = with_gaps(HullKind::kRoundBilge, 24, /*full=*/false, 0.1);
-  const std::vector<Patch> broken = generate_hull(spec).patches;
-  const std::vector<Patch> clean = generated(HullKind::kRoundBilge, 24).patches;
-  const Merged m = merge_of(broken, edge_length_for_triangles(broken, 40000));
-  const Merged ref = merge_of(clean, edge_length_for_triangles(clean, 40000));
+  const auto [m, ref] = gapped_and_clean(HullKind::kRoundBilge, 24, /*full=*/false, 0.1, 40000);
   const FeatureSet f = features_of(m), f_ref = features_of(ref);
   ASSERT_EQ(f_ref.knuckles.size(), 1u);
   EXPECT_EQ(f.knuckles.size(), 1u);
