@@ -469,50 +469,53 @@ std::vector<SmoothPieces> smooth_pieces(std::span<const Patch> patches) {
 PatchFacing::PatchFacing(const SurfaceMesh& mesh, std::span<const Patch> patches)
     : mesh_(mesh),
       patches_(patches),
-      samples_(patches.size()),
+      face_start_(patches.size() + 1, 0),
       once_(std::make_unique<std::once_flag[]>(patches.size())),
       facing_(patches.size(), 0) {
-  // A few faces spread over each patch, in face order: count, then pick.
-  std::vector<Index> count(patches.size(), 0), seen(patches.size(), 0);
+  // Each patch's faces, ascending (count -> scan -> fill).
   for (const PatchId p : mesh.face_patch) {
-    if (p < count.size()) ++count[p];
+    if (p < patches.size()) ++face_start_[p + 1];
   }
-  for (auto& s : samples_) s.fill(kInvalid);
-  std::vector<int> taken(patches.size(), 0);
+  for (std::size_t p = 0; p < patches.size(); ++p) face_start_[p + 1] += face_start_[p];
+  faces_.resize(face_start_.back());
+  std::vector<Index> fill(face_start_.begin(), face_start_.end() - 1);
   for (std::size_t f = 0; f < mesh.face_patch.size(); ++f) {
     const PatchId p = mesh.face_patch[f];
-    if (p >= count.size()) continue;
-    // Rank k * count / kSamples is taken; ranks that repeat (fewer faces than samples) once.
-    const auto rank = [&](int k) { return std::uint64_t{count[p]} * k / kSamples; };
-    int& k = taken[p];
-    if (k < kSamples && seen[p] == rank(k)) {
-      samples_[p][k] = Index(f);
-      while (k < kSamples && rank(k) <= seen[p]) ++k;
-    }
-    ++seen[p];
+    if (p < patches.size()) faces_[fill[p]++] = Index(f);
   }
 }
 
 double PatchFacing::of(PatchId p) const {
   std::call_once(once_[p], [&] {
     const NurbsSurface& s = patches_[p].surface;
-    int votes = 0;
-    for (const Index f : samples_[p]) {
-      if (f == kInvalid || !face_uv_usable(mesh_, mesh_.faces[f], p)) continue;
-      const Face& face = mesh_.faces[f];
+    const bool have_uv = mesh_.vertex_uv.size() == mesh_.vertex_count() &&
+                         mesh_.vertex_patch.size() == mesh_.vertex_count();
+    // Faces spread over the patch (kProbes of them at most), each voting once, by its first
+    // corner that is the patch's own vertex and lies where its (u, v) puts it: whether the
+    // surface's normal there points the face's way. kVotes votes decide.
+    const Index first = face_start_[p], count = face_start_[p + 1] - first;
+    const Index stride = std::max<Index>(1, count / kProbes);
+    int votes = 0, cast = 0;
+    for (Index k = 0; have_uv && k < count && cast < kVotes; k += stride) {
+      const Face& face = mesh_.faces[faces_[first + k]];
       const int n = corner_count(face);
       double longest = 0;
       for (int c = 0; c < n; ++c) {
         longest =
             std::max(longest, norm(mesh_.positions[face[(c + 1) % n]] - mesh_.positions[face[c]]));
       }
-      const auto corners = corner_parameters(mesh_, s, face, kCornerOnSurface * longest);
-      if (!corners) continue;
-      Vec2d uv;
-      for (int c = 0; c < n; ++c) uv += (*corners)[c];
-      uv *= 1.0 / n;
-      const double d = dot(normal(s, uv.x, uv.y), face_normal(mesh_.positions, face));
-      votes += d > 0 ? 1 : d < 0 ? -1 : 0;
+      for (int c = 0; c < n; ++c) {
+        const Index v = face[c];
+        if (mesh_.vertex_patch[v] != p) continue;
+        const Vec2d uv = mesh_.vertex_uv[v];
+        if (!(norm(evaluate(s, uv.x, uv.y) - mesh_.positions[v]) <= kCornerOnSurface * longest)) {
+          continue;
+        }
+        const double d = dot(normal(s, uv.x, uv.y), face_normal(mesh_.positions, face));
+        votes += d > 0 ? 1 : d < 0 ? -1 : 0;
+        ++cast;
+        break;
+      }
     }
     facing_[p] = votes > 0 ? 1 : votes < 0 ? -1 : 0;
   });

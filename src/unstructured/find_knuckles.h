@@ -37,8 +37,8 @@ struct SmoothPieces {
 std::vector<SmoothPieces> smooth_pieces(std::span<const Patch> patches);
 
 // How each patch's NURBS normal (su x sv) faces against the mesh's faces of that patch: +1 the
-// same way, -1 reversed, 0 unknown (none of its sampled faces has corners with their own (u, v)
-// on the surface). Found on first use (thread-safe) from a few faces spread over the patch, by
+// same way, -1 reversed, 0 unknown (no face probed has a corner of the patch lying where its
+// (u, v) puts it). Found on first use (thread-safe) from a few faces spread over the patch, by
 // majority, so that one folded face does not decide.
 class PatchFacing {
  public:
@@ -46,10 +46,11 @@ class PatchFacing {
   double of(PatchId p) const;
 
  private:
-  static constexpr int kSamples = 5;
+  static constexpr int kVotes = 5;    // votes that decide
+  static constexpr int kProbes = 64;  // faces of a patch looked at, at most
   const SurfaceMesh& mesh_;
   std::span<const Patch> patches_;
-  std::vector<std::array<Index, kSamples>> samples_;  // face ids, kInvalid where fewer
+  std::vector<Index> face_start_, faces_;  // each patch's faces, ascending
   std::unique_ptr<std::once_flag[]> once_;
   mutable std::vector<double> facing_;
 };
