@@ -210,16 +210,22 @@ std::optional<Vec3d> side_normal(const SurfaceMesh& mesh, std::span<const Patch>
   const SidePoint side = side_parameter(mesh, pieces[patch], s, f, a, b);
   // Where the centroid lies on a knot line, the point on either side of it: the face's side is
   // the one whose normal agrees with the face's best (either way round).
-  const auto either_side = [](double t, double on_break, const std::vector<double>& breaks) {
-    if (!std::isfinite(on_break)) return std::vector<double>{t};
-    const double d = kKnotOffset * (breaks.back() - breaks.front());
-    return std::vector<double>{on_break - d, on_break + d};
+  struct Params {
+    double t[2];
+    int count;
   };
+  const auto either_side = [](double t, double on_break, const std::vector<double>& breaks) {
+    if (!std::isfinite(on_break)) return Params{{t, t}, 1};
+    const double d = kKnotOffset * (breaks.back() - breaks.front());
+    return Params{{on_break - d, on_break + d}, 2};
+  };
+  const Params us = either_side(side.uv.x, side.on_break.x, pieces[patch].u);
+  const Params vs = either_side(side.uv.y, side.on_break.y, pieces[patch].v);
   Vec3d n;
   double best = -1;
-  for (const double u : either_side(side.uv.x, side.on_break.x, pieces[patch].u)) {
-    for (const double v : either_side(side.uv.y, side.on_break.y, pieces[patch].v)) {
-      const Vec3d c = normal(s, u, v);
+  for (int i = 0; i < us.count; ++i) {
+    for (int j = 0; j < vs.count; ++j) {
+      const Vec3d c = normal(s, us.t[i], vs.t[j]);
       if (!is_finite(c) || squared_norm(c) == 0) continue;
       if (const double fit = std::abs(dot(c, face_n)); fit > best) best = fit, n = c;
     }

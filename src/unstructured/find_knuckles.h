@@ -3,7 +3,6 @@
 // src/unstructured (find_features is the public entry).
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
