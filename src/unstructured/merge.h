@@ -93,7 +93,9 @@ struct MergeReport {
 
 struct MergedSurface {
   // Triangles with shared vertices; vertex_patch, vertex_uv, face_patch filled. Vertices and faces
-  // in Morton order.
+  // in Morton order. A vertex the snap moved across a gap (a weld's mean, a split's halfway point)
+  // keeps the (u, v) it had on its patch, and may lie off the patch: a caller that evaluates a
+  // vertex's (u, v) checks it against the position (see find_knuckles).
   SurfaceMesh mesh;
   // Maps to the input triangulation: the input vertex each vertex came from (for welded vertices,
   // the lowest-numbered one), and the input triangle each face was cut from.
