@@ -332,6 +332,18 @@ void snap_end(Vec3d& end, double x, const SurfaceMesh& surface,
   end = at;
 }
 
+// A row's curve runs up from its lower end; with both ends at one height (to tol, m), from the
+// end nearer the centre plane, as the girth runs. The section ordered the ends before they were
+// snapped: a shelf under the waterline, cut into a curve whose two ends lie on it, came out
+// inboard end first at one station and outboard end first at the next (its ends' heights on the
+// NURBS differ by noise), and the strips between such rows were zipped crosswise
+// (ship_449_patches at drafts of 6.5-9 m: up to 673 pairs of panels through each other). Snapped
+// onto the waterline, both ends have its height exactly.
+bool runs_down(const Vec3d& first, const Vec3d& last, double tol) {
+  if (std::abs(first.z - last.z) > tol) return last.z < first.z;
+  return std::abs(last.y) < std::abs(first.y);
+}
+
 }  // namespace
 
 std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface,
@@ -342,6 +354,9 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
   for (std::size_t j = 0; j < cut.size(); ++j) cut[j] = Plane{{plan.x[j], 0, 0}, {1, 0, 0}};
   const std::vector<Section> secs = query.sections(cut);
   const double tol = 1e-3 * query.length_scale();
+  // Ends this close in height are at one height: the section's own tie (HullQuery's default
+  // join tolerance), so that an end left unsnapped is ordered as the section ordered it.
+  const double tie = 1e-6 * query.length_scale();
   // A curve's end lies on the surface's boundary, but its refinement onto the NURBS can carry it
   // off: where the waterplane cut moved a fine chine vertex up onto the waterline, the end
   // refines back down onto the chine (property seed 1338: 0.17 m, a ninth of a panel, past
@@ -363,6 +378,9 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       if (!pl.closed) {
         snap_end(ends.points.front().point, row.x, surface, boundary, end_tol);
         snap_end(ends.points.back().point, row.x, surface, boundary, end_tol);
+        if (runs_down(ends.points.front().point, ends.points.back().point, tie)) {
+          std::reverse(ends.points.begin(), ends.points.end());
+        }
       }
       RowCurve c = make_curve(ends, metric);
       // Slivers of a section (a grazed patch corner) are not rows.

@@ -95,5 +95,30 @@ TEST(CliStructured, ACornerOfACentrePlaneDrawnOffYZeroIsClosed) {
   }
 }
 
+// ship_449_patches.iges at ballast drafts: just under the waterline its bow has a shelf, a nearly
+// horizontal surface between the bulb's top and the flare, which the stations cut as a second
+// curve with both ends on the waterline. The sections gave such a curve inboard end first at one
+// station and outboard end first at the next, and the strips between them were zipped crosswise:
+// 433 and 673 pairs of panels through each other at these two drafts, and a second border loop
+// at the first. A curve with both ends at one height now runs from the end nearer the centre
+// plane at every station.
+TEST(CliStructured, AShelfUnderTheWaterlineIsZippedOneWayRoundAtEveryStation) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  const auto dir = test::scratch_dir("cli_structured_ship449_shelf");
+  for (const char* draft : {"7.375", "8.5"}) {
+    const auto out = dir / "panels.obj";
+    const auto r =
+        test::run_hullmesh("-q --validate structured " + test::q(ship) + " -o " + test::q(out) +
+                           " --auto-blocks --panels 2000 --draft " + draft);
+    ASSERT_EQ(r.exit_code, 0) << draft << ": " << r.out;
+    const nlohmann::json record =
+        test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
+    ASSERT_TRUE(record.is_object()) << draft;
+    EXPECT_EQ(record["quality"]["crossing_pairs"], 0) << draft;
+    EXPECT_EQ(record["quality"]["boundary_loops"], 1) << draft;
+    EXPECT_EQ(record["quality"]["nonmanifold_edges"], 0) << draft;
+  }
+}
+
 }  // namespace
 }  // namespace hm
