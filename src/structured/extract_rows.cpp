@@ -33,6 +33,10 @@ constexpr double kFragmentShare = 0.15;
 // ... but one at least this long (panels) that runs on at the next station or the one before is
 // a piece of hull (see drop_fragments).
 constexpr double kRunPanels = 0.5;
+// A curve beside a fragment at the next station or the one before, under this many times
+// kFragmentPanels long, is the same piece of hull running on, though it may be just long enough
+// not to be a fragment itself (see drop_fragments).
+constexpr double kRunLength = 2;
 
 RowCurve make_curve(const SectionPolyline& pl, const Metric& metric) {
   RowCurve c;
@@ -274,20 +278,26 @@ bool near_in_section(const RowCurve& a, const RowCurve& b, double gap) {
 // Drops the rows' fragments: curves under kFragmentPanels long and under kFragmentShare of their
 // row's longest curve. A station that grazes a raked transom or a skeg cuts off such a sliver;
 // the strips on either side cover its surface, and a sliver row of its own would pair with
-// nothing. A fragment at least kRunPanels long, on a station that is no border, with a fragment
-// beside it (within `gap` in y and z) at the next station or the one before, is no graze but a
-// piece of hull that is short in section and runs on in x, and stays: the stem above a bulb,
+// nothing. A fragment at least kRunPanels long, on a station that is no border, with a short
+// curve beside it (within `gap` in y and z; a fragment, or under kRunLength * kFragmentPanels) at
+// the next station or the one before, is no graze but a piece of hull that is short in section
+// and runs on in x, and stays: the stem above a bulb,
 // forward of the neck's aftmost point, where the sections are the bulb's and the stem's (the
 // generated 48-patch round-bilge hull at 16,000 panels: the stem's rows were dropped, a fan from
 // the bulb's row end covered the stem, and the fan's panels lay in the centre plane, 0.11 m off
 // the hull). Shorter ones go still: a full hull's stem tip of 0.06 panels, kept, was left
-// uncapped (property seed 5395).
+// uncapped (property seed 5395). A shelf under a ballast waterline narrowing towards its end
+// (ship_449_patches at 5 m trimmed 1.5 degrees by the stern: 3.1, 2.4 and 3.1 panels at three
+// stations in a row) lost its middle station's curve while a fragment had to have a fragment
+// beside it, and the caps and joins around the gap crossed (12 pairs of panels).
 void drop_fragments(std::vector<Row>& rows, double gap) {
   std::vector<double> longest(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) longest[j] = longest_curve(rows[j]);
   const auto runs_on = [&](const RowCurve& c, std::size_t k) {
     for (const RowCurve& d : rows[k].curves) {
-      if (is_fragment(d, longest[k]) && near_in_section(c, d, gap)) return true;
+      const bool short_too =
+          is_fragment(d, longest[k]) || d.length() < kRunLength * kFragmentPanels;
+      if (short_too && near_in_section(c, d, gap)) return true;
     }
     return false;
   };

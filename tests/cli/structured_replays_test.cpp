@@ -120,5 +120,23 @@ TEST(CliStructured, AShelfUnderTheWaterlineIsZippedOneWayRoundAtEveryStation) {
   }
 }
 
+// The same shelf at 5 m, trimmed 1.5 degrees by the stern, narrows towards its end: its curves at
+// three stations in a row measured 3.1, 2.4 and 3.1 panels. The middle one is a fragment (under 3
+// panels and 15% of its row's longest curve), and it was dropped, since only a fragment beside it
+// counted as the same piece running on: the caps and joins around the gap crossed (12 pairs).
+TEST(CliStructured, AShelfNarrowingToItsEndKeepsItsCurveAtEveryStation) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  const auto out = test::scratch_dir("cli_structured_ship449_shelf_end") / "panels.obj";
+  const auto r =
+      test::run_hullmesh("-q --validate structured " + test::q(ship) + " -o " + test::q(out) +
+                         " --auto-blocks --panels 3000 --draft 5 --trim 1.5");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const nlohmann::json record =
+      test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
+  ASSERT_TRUE(record.is_object());
+  EXPECT_EQ(record["quality"]["crossing_pairs"], 0);
+  EXPECT_EQ(record["quality"]["boundary_loops"], 1);
+}
+
 }  // namespace
 }  // namespace hm
