@@ -287,7 +287,7 @@ bool near_in_section(const RowCurve& a, const RowCurve& b, double gap) {
 // the bulb's row end covered the stem, and the fan's panels lay in the centre plane, 0.11 m off
 // the hull). Shorter ones go still: a full hull's stem tip of 0.06 panels, kept, was left
 // uncapped (property seed 5395). A shelf under a ballast waterline narrowing towards its end
-// (ship_449_patches at 5 m trimmed 1.5 degrees by the stern: 3.1, 2.4 and 3.1 panels at three
+// (ship_449_patches at 5 m with --trim 1.5, its stern down: 3.1, 2.4 and 3.1 panels at three
 // stations in a row) lost its middle station's curve while a fragment had to have a fragment
 // beside it, and the caps and joins around the gap crossed (12 pairs of panels).
 void drop_fragments(std::vector<Row>& rows, double gap) {

@@ -95,13 +95,13 @@ TEST(CliStructured, ACornerOfACentrePlaneDrawnOffYZeroIsClosed) {
   }
 }
 
-// ship_449_patches.iges at ballast drafts: just under the waterline its bow has a shelf, a nearly
-// horizontal surface between the bulb's top and the flare, which the stations cut as a second
-// curve with both ends on the waterline. The sections gave such a curve inboard end first at one
-// station and outboard end first at the next, and the strips between them were zipped crosswise:
-// 433 and 673 pairs of panels through each other at these two drafts, and a second border loop
-// at the first. A curve with both ends at one height now runs from the end nearer the centre
-// plane at every station.
+// ship_449_patches.iges at ballast drafts: just under the waterline its stern (at +x) has a
+// shelf, the nearly horizontal underside of the counter above the skeg, which the stations cut
+// as a second curve with both ends on the waterline. The sections gave such a curve inboard end
+// first at one station and outboard end first at the next, and the strips between them were
+// zipped crosswise: 433 and 673 pairs of panels through each other at these two drafts, and a
+// second border loop at the first. A curve with both ends at one height now runs from the end
+// nearer the centre plane at every station.
 TEST(CliStructured, AShelfUnderTheWaterlineIsZippedOneWayRoundAtEveryStation) {
   HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
   const auto dir = test::scratch_dir("cli_structured_ship449_shelf");
@@ -120,7 +120,7 @@ TEST(CliStructured, AShelfUnderTheWaterlineIsZippedOneWayRoundAtEveryStation) {
   }
 }
 
-// The same shelf at 5 m, trimmed 1.5 degrees by the stern, narrows towards its end: its curves at
+// The same shelf at 5 m, with --trim 1.5 (the stern down), narrows towards its end: its curves at
 // three stations in a row measured 3.1, 2.4 and 3.1 panels. The middle one is a fragment (under 3
 // panels and 15% of its row's longest curve), and it was dropped, since only a fragment beside it
 // counted as the same piece running on: the caps and joins around the gap crossed (12 pairs).
