@@ -342,16 +342,36 @@ void snap_end(Vec3d& end, double x, const SurfaceMesh& surface,
   end = at;
 }
 
-// A row's curve runs up from its lower end; with both ends at one height (to tol, m), from the
-// end nearer the centre plane, as the girth runs. The section ordered the ends before they were
-// snapped: a shelf under the waterline, cut into a curve whose two ends lie on it, came out
-// inboard end first at one station and outboard end first at the next (its ends' heights on the
-// NURBS differ by noise), and the strips between such rows were zipped crosswise
-// (ship_449_patches at drafts of 6.5-9 m: up to 673 pairs of panels through each other). Snapped
-// onto the waterline, both ends have its height exactly.
-bool runs_down(const Vec3d& first, const Vec3d& last, double tol) {
+// A row's curve runs as the girth does: from its end on the centre plane (within `centre`, m)
+// when it has one there, else up from its lower end, and with both ends at one height (to tol,
+// m), from the end nearer the centre plane. The section ordered the ends before they were
+// snapped, by height alone:
+//   - a shelf under the waterline, cut into a curve whose two ends lie on it, came out inboard
+//     end first at one station and outboard end first at the next (its ends' heights on the
+//     NURBS differ by noise), and the strips between such rows were zipped crosswise
+//     (ship_449_patches at drafts of 6.5-9 m: up to 673 pairs of panels through each other).
+//     Snapped onto the waterline, both ends have its height exactly;
+//   - the bottom by an immersed transom, rising to the centre plane, was cut from its outboard
+//     end and listed after the row's other curve, and the end cap and the strip before it, which
+//     read the curves in order up the hull, crossed (ship_449_patches at 15.5 m with
+//     --trim 1.5: 82 pairs).
+bool runs_down(const Vec3d& first, const Vec3d& last, double tol, double centre) {
+  const bool first_on = std::abs(first.y) <= centre, last_on = std::abs(last.y) <= centre;
+  if (first_on != last_on) return last_on;
   if (std::abs(first.z - last.z) > tol) return last.z < first.z;
   return std::abs(last.y) < std::abs(first.y);
+}
+
+// Girth order of a row's curves, which the strips' joins and the end caps read as the order in
+// which the curves follow one another up the hull: those that start on the centre plane first,
+// then by the height of their first point (to tol, m), then by its distance from the centre
+// plane. The section sorts them by their first points' (z, y, x).
+bool girth_before(const RowCurve& a, const RowCurve& b, double tol, double centre) {
+  const Vec3d &pa = a.points.front(), &pb = b.points.front();
+  const bool a_on = std::abs(pa.y) <= centre, b_on = std::abs(pb.y) <= centre;
+  if (a_on != b_on) return a_on;
+  if (std::abs(pa.z - pb.z) > tol) return pa.z < pb.z;
+  return std::abs(pa.y) < std::abs(pb.y);
 }
 
 }  // namespace
@@ -367,6 +387,7 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
   // Ends this close in height are at one height: the section's own tie (HullQuery's default
   // join tolerance), so that an end left unsnapped is ordered as the section ordered it.
   const double tie = 1e-6 * query.length_scale();
+  const double centre = kPlaneTolerance * query.length_scale();
   // A curve's end lies on the surface's boundary, but its refinement onto the NURBS can carry it
   // off: where the waterplane cut moved a fine chine vertex up onto the waterline, the end
   // refines back down onto the chine (property seed 1338: 0.17 m, a ninth of a panel, past
@@ -388,7 +409,7 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       if (!pl.closed) {
         snap_end(ends.points.front().point, row.x, surface, boundary, end_tol);
         snap_end(ends.points.back().point, row.x, surface, boundary, end_tol);
-        if (runs_down(ends.points.front().point, ends.points.back().point, tie)) {
+        if (runs_down(ends.points.front().point, ends.points.back().point, tie, centre)) {
           std::reverse(ends.points.begin(), ends.points.end());
         }
       }
@@ -408,6 +429,9 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       grade_by_turning(c);
       row.curves.push_back(std::move(c));
     }
+    std::stable_sort(
+        row.curves.begin(), row.curves.end(),
+        [&](const RowCurve& a, const RowCurve& b) { return girth_before(a, b, tie, centre); });
   });
   drop_fragments(rows, 2 * std::max({metric.size.x, metric.size.y, metric.size.z}));
   return rows;

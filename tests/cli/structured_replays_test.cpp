@@ -138,5 +138,29 @@ TEST(CliStructured, AShelfNarrowingToItsEndKeepsItsCurveAtEveryStation) {
   EXPECT_EQ(record["quality"]["boundary_loops"], 1);
 }
 
+// ship_449_patches.iges trimmed by its stern (at +x) immerses its open transom. The last station
+// cuts the bottom there in two curves: one from the centre plane out to where the transom's edge
+// curves forward, and one from beyond that up to the waterline. The first ran from its outboard
+// end, which lies lower, and the row listed the outboard curve first; the end cap and the strip
+// before it, which read the curves in order up the hull, crossed: 82 and 92 pairs of panels
+// through each other in these two runs. A curve now starts at its end on the centre plane, and
+// a row lists its curves in girth order.
+TEST(CliStructured, AnImmersedTransomCutInTwoIsCappedInGirthOrder) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  const auto dir = test::scratch_dir("cli_structured_ship449_transom");
+  for (const char* position :
+       {"--panels 3000 --draft 15.5 --trim 1.5", "--panels 6000 --draft 10 --trim 2"}) {
+    const auto out = dir / "panels.obj";
+    const auto r = test::run_hullmesh("-q --validate structured " + test::q(ship) + " -o " +
+                                      test::q(out) + " --auto-blocks " + position);
+    ASSERT_EQ(r.exit_code, 0) << position << ": " << r.out;
+    const nlohmann::json record =
+        test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
+    ASSERT_TRUE(record.is_object()) << position;
+    EXPECT_EQ(record["quality"]["crossing_pairs"], 0) << position;
+    EXPECT_EQ(record["quality"]["boundary_loops"], 1) << position;
+  }
+}
+
 }  // namespace
 }  // namespace hm
