@@ -20,6 +20,10 @@
 //   - seed 9107 (HM_PROPERTY_WIDE): a round-bilge hull trimmed 0.75 degrees by the bow, whose
 //     bulb's stem got two nodes 2.5e-11 m apart and a triangle of no area between them (now one
 //     node: weld_coincident_nodes).
+#include <filesystem>
+#include <initializer_list>
+#include <string>
+
 #include "support/replay.h"
 
 namespace hm {
@@ -73,6 +77,34 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
   test::expect_replays_break_no_hard_rule("structured", cases, "cli_structured_replays");
 }
 
+// `hullmesh -q --validate structured HULL -o OUT ARGS`: the quality summary of its run record,
+// or null (with a failure naming the arguments) when the run failed or wrote no record.
+nlohmann::json structured_quality(const std::filesystem::path& hull,
+                                  const std::filesystem::path& out, const std::string& args) {
+  const auto r = test::run_hullmesh("-q --validate structured " + test::q(hull) + " -o " +
+                                    test::q(out) + " " + args);
+  EXPECT_EQ(r.exit_code, 0) << args << ": " << r.out;
+  if (r.exit_code != 0) return nullptr;
+  const nlohmann::json record =
+      test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
+  EXPECT_TRUE(record.is_object()) << args;
+  return record.is_object() ? record["quality"] : nlohmann::json();
+}
+
+// No panel through another and one border (the waterline with the centre plane and the file's
+// own open edges joined to it), at each of the given positions.
+void expect_one_sound_border(const std::filesystem::path& hull, const std::string& scratch,
+                             std::initializer_list<const char*> positions) {
+  const auto out = test::scratch_dir(scratch) / "panels.obj";
+  for (const char* position : positions) {
+    const nlohmann::json q = structured_quality(hull, out, position);
+    ASSERT_TRUE(q.is_object()) << position;
+    EXPECT_EQ(q["crossing_pairs"], 0) << position;
+    EXPECT_EQ(q["boundary_loops"], 1) << position;
+    EXPECT_EQ(q["nonmanifold_edges"], 0) << position;
+  }
+}
+
 // kcs.iges draws its centre-plane edge 2.5e-6 m off y = 0. A row's end at the stern, one node
 // in the centre plane and one on the waterline, cut the corner between them, and the gap fill
 // took the centre plane for y == 0 exactly, so it saw no corner: a sliver 0.03 m by 0.014 m
@@ -80,18 +112,12 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
 // 0.274 m draft and 1.45 degrees of trim). Both meshes are closed below the waterline now.
 TEST(CliStructured, ACornerOfACentrePlaneDrawnOffYZeroIsClosed) {
   HM_REQUIRE_SHARED_HULL(kcs, "kcs.iges");
-  const auto dir = test::scratch_dir("cli_structured_kcs_corner");
-  for (const char* position : {"--panels 1500 --draft 0.2587",
-                               "--panels 800 --draft 0.27393 "
-                               "--trim -1.45"}) {
-    const auto out = dir / "panels.obj";
-    const auto r = test::run_hullmesh("-q --validate structured " + test::q(kcs) + " -o " +
-                                      test::q(out) + " " + position);
-    ASSERT_EQ(r.exit_code, 0) << position << ": " << r.out;
-    const nlohmann::json record =
-        test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
-    ASSERT_TRUE(record.is_object()) << position;
-    EXPECT_EQ(record["quality"]["free_edges_below_waterline"], 0) << position;
+  const auto out = test::scratch_dir("cli_structured_kcs_corner") / "panels.obj";
+  for (const char* position :
+       {"--panels 1500 --draft 0.2587", "--panels 800 --draft 0.27393 --trim -1.45"}) {
+    const nlohmann::json q = structured_quality(kcs, out, position);
+    ASSERT_TRUE(q.is_object()) << position;
+    EXPECT_EQ(q["free_edges_below_waterline"], 0) << position;
   }
 }
 
@@ -104,20 +130,9 @@ TEST(CliStructured, ACornerOfACentrePlaneDrawnOffYZeroIsClosed) {
 // nearer the centre plane at every station.
 TEST(CliStructured, AShelfUnderTheWaterlineIsZippedOneWayRoundAtEveryStation) {
   HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
-  const auto dir = test::scratch_dir("cli_structured_ship449_shelf");
-  for (const char* draft : {"7.375", "8.5"}) {
-    const auto out = dir / "panels.obj";
-    const auto r =
-        test::run_hullmesh("-q --validate structured " + test::q(ship) + " -o " + test::q(out) +
-                           " --auto-blocks --panels 2000 --draft " + draft);
-    ASSERT_EQ(r.exit_code, 0) << draft << ": " << r.out;
-    const nlohmann::json record =
-        test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
-    ASSERT_TRUE(record.is_object()) << draft;
-    EXPECT_EQ(record["quality"]["crossing_pairs"], 0) << draft;
-    EXPECT_EQ(record["quality"]["boundary_loops"], 1) << draft;
-    EXPECT_EQ(record["quality"]["nonmanifold_edges"], 0) << draft;
-  }
+  expect_one_sound_border(
+      ship, "cli_structured_ship449_shelf",
+      {"--auto-blocks --panels 2000 --draft 7.375", "--auto-blocks --panels 2000 --draft 8.5"});
 }
 
 // The same shelf at 5 m, with --trim 1.5 (the stern down), narrows towards its end: its curves at
@@ -126,16 +141,8 @@ TEST(CliStructured, AShelfUnderTheWaterlineIsZippedOneWayRoundAtEveryStation) {
 // counted as the same piece running on: the caps and joins around the gap crossed (12 pairs).
 TEST(CliStructured, AShelfNarrowingToItsEndKeepsItsCurveAtEveryStation) {
   HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
-  const auto out = test::scratch_dir("cli_structured_ship449_shelf_end") / "panels.obj";
-  const auto r =
-      test::run_hullmesh("-q --validate structured " + test::q(ship) + " -o " + test::q(out) +
-                         " --auto-blocks --panels 3000 --draft 5 --trim 1.5");
-  ASSERT_EQ(r.exit_code, 0) << r.out;
-  const nlohmann::json record =
-      test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
-  ASSERT_TRUE(record.is_object());
-  EXPECT_EQ(record["quality"]["crossing_pairs"], 0);
-  EXPECT_EQ(record["quality"]["boundary_loops"], 1);
+  expect_one_sound_border(ship, "cli_structured_ship449_shelf_end",
+                          {"--auto-blocks --panels 3000 --draft 5 --trim 1.5"});
 }
 
 // ship_449_patches.iges trimmed by its stern (at +x) immerses its open transom. The last station
@@ -147,19 +154,9 @@ TEST(CliStructured, AShelfNarrowingToItsEndKeepsItsCurveAtEveryStation) {
 // a row lists its curves in girth order.
 TEST(CliStructured, AnImmersedTransomCutInTwoIsCappedInGirthOrder) {
   HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
-  const auto dir = test::scratch_dir("cli_structured_ship449_transom");
-  for (const char* position :
-       {"--panels 3000 --draft 15.5 --trim 1.5", "--panels 6000 --draft 10 --trim 2"}) {
-    const auto out = dir / "panels.obj";
-    const auto r = test::run_hullmesh("-q --validate structured " + test::q(ship) + " -o " +
-                                      test::q(out) + " --auto-blocks " + position);
-    ASSERT_EQ(r.exit_code, 0) << position << ": " << r.out;
-    const nlohmann::json record =
-        test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
-    ASSERT_TRUE(record.is_object()) << position;
-    EXPECT_EQ(record["quality"]["crossing_pairs"], 0) << position;
-    EXPECT_EQ(record["quality"]["boundary_loops"], 1) << position;
-  }
+  expect_one_sound_border(ship, "cli_structured_ship449_transom",
+                          {"--auto-blocks --panels 3000 --draft 15.5 --trim 1.5",
+                           "--auto-blocks --panels 6000 --draft 10 --trim 2"});
 }
 
 }  // namespace
