@@ -384,8 +384,8 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
   for (std::size_t j = 0; j < cut.size(); ++j) cut[j] = Plane{{plan.x[j], 0, 0}, {1, 0, 0}};
   const std::vector<Section> secs = query.sections(cut);
   const double tol = 1e-3 * query.length_scale();
-  // Ends this close in height are at one height: the section's own tie (HullQuery's default
-  // join tolerance), so that an end left unsnapped is ordered as the section ordered it.
+  // Points this close in height are at one height: the section's own tie (HullQuery's default
+  // join tolerance). Ends snapped onto the waterline have its height exactly.
   const double tie = 1e-6 * query.length_scale();
   const double centre = kPlaneTolerance * query.length_scale();
   // A curve's end lies on the surface's boundary, but its refinement onto the NURBS can carry it
