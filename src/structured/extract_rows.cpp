@@ -279,25 +279,23 @@ bool near_in_section(const RowCurve& a, const RowCurve& b, double gap) {
 // row's longest curve. A station that grazes a raked transom or a skeg cuts off such a sliver;
 // the strips on either side cover its surface, and a sliver row of its own would pair with
 // nothing. A fragment at least kRunPanels long, on a station that is no border, with a short
-// curve beside it (within `gap` in y and z; a fragment, or under kRunLength * kFragmentPanels) at
-// the next station or the one before, is no graze but a piece of hull that is short in section
-// and runs on in x, and stays: the stem above a bulb,
-// forward of the neck's aftmost point, where the sections are the bulb's and the stem's (the
-// generated 48-patch round-bilge hull at 16,000 panels: the stem's rows were dropped, a fan from
-// the bulb's row end covered the stem, and the fan's panels lay in the centre plane, 0.11 m off
-// the hull). Shorter ones go still: a full hull's stem tip of 0.06 panels, kept, was left
-// uncapped (property seed 5395). A shelf under a ballast waterline narrowing towards its end
-// (ship_449_patches at 5 m with --trim 1.5, its stern down: 3.1, 2.4 and 3.1 panels at three
-// stations in a row) lost its middle station's curve while a fragment had to have a fragment
-// beside it, and the caps and joins around the gap crossed (12 pairs of panels).
+// curve beside it (within `gap` in y and z; under kRunLength * kFragmentPanels, as every fragment
+// is) at the next station or the one before, is no graze but a piece of hull that is short in
+// section and runs on in x, and stays: the stem above a bulb, forward of the neck's aftmost point,
+// where the sections are the bulb's and the stem's (the generated 48-patch round-bilge hull at
+// 16,000 panels: the stem's rows were dropped, a fan from the bulb's row end covered the stem, and
+// the fan's panels lay in the centre plane, 0.11 m off the hull). Shorter ones go still: a full
+// hull's stem tip of 0.06 panels, kept, was left uncapped (property seed 5395). A shelf under a
+// ballast waterline narrowing towards its end (ship_449_patches at 5 m with --trim 1.5, its stern
+// down: 3.1, 2.4 and 3.1 panels at three stations in a row) lost its middle station's curve while a
+// fragment had to have a fragment beside it, and the caps and joins around the gap crossed (12
+// pairs of panels).
 void drop_fragments(std::vector<Row>& rows, double gap) {
   std::vector<double> longest(rows.size());
   for (std::size_t j = 0; j < rows.size(); ++j) longest[j] = longest_curve(rows[j]);
   const auto runs_on = [&](const RowCurve& c, std::size_t k) {
     for (const RowCurve& d : rows[k].curves) {
-      const bool short_too =
-          is_fragment(d, longest[k]) || d.length() < kRunLength * kFragmentPanels;
-      if (short_too && near_in_section(c, d, gap)) return true;
+      if (d.length() < kRunLength * kFragmentPanels && near_in_section(c, d, gap)) return true;
     }
     return false;
   };
@@ -342,36 +340,24 @@ void snap_end(Vec3d& end, double x, const SurfaceMesh& surface,
   end = at;
 }
 
-// A row's curve runs as the girth does: from its end on the centre plane (within `centre`, m)
-// when it has one there, else up from its lower end, and with both ends at one height (to tol,
-// m), from the end nearer the centre plane. The section ordered the ends before they were
-// snapped, by height alone:
+// Girth order, the order of points up the hull from the keel: a point on the centre plane
+// (within `centre`, m) before one off it, then the lower (to tol, m), then the nearer the centre
+// plane. A row's open curve runs from its end first in this order, and the row lists its curves
+// by their first points in it; the strips' joins and the end caps read them so. The section had
+// ordered ends and curves by height alone, and before the ends were snapped onto the waterline:
 //   - a shelf under the waterline, cut into a curve whose two ends lie on it, came out inboard
 //     end first at one station and outboard end first at the next (its ends' heights on the
 //     NURBS differ by noise), and the strips between such rows were zipped crosswise
 //     (ship_449_patches at drafts of 6.5-9 m: up to 673 pairs of panels through each other).
 //     Snapped onto the waterline, both ends have its height exactly;
 //   - the bottom by an immersed transom, rising to the centre plane, was cut from its outboard
-//     end and listed after the row's other curve, and the end cap and the strip before it, which
-//     read the curves in order up the hull, crossed (ship_449_patches at 15.5 m with
-//     --trim 1.5: 82 pairs).
-bool runs_down(const Vec3d& first, const Vec3d& last, double tol, double centre) {
-  const bool first_on = std::abs(first.y) <= centre, last_on = std::abs(last.y) <= centre;
-  if (first_on != last_on) return last_on;
-  if (std::abs(first.z - last.z) > tol) return last.z < first.z;
-  return std::abs(last.y) < std::abs(first.y);
-}
-
-// Girth order of a row's curves, which the strips' joins and the end caps read as the order in
-// which the curves follow one another up the hull: those that start on the centre plane first,
-// then by the height of their first point (to tol, m), then by its distance from the centre
-// plane. The section sorts them by their first points' (z, y, x).
-bool girth_before(const RowCurve& a, const RowCurve& b, double tol, double centre) {
-  const Vec3d &pa = a.points.front(), &pb = b.points.front();
-  const bool a_on = std::abs(pa.y) <= centre, b_on = std::abs(pb.y) <= centre;
+//     end and listed after the row's other curve, and the end cap and the strip before it
+//     crossed (ship_449_patches at 15.5 m with --trim 1.5: 82 pairs).
+bool girth_before(const Vec3d& a, const Vec3d& b, double tol, double centre) {
+  const bool a_on = std::abs(a.y) <= centre, b_on = std::abs(b.y) <= centre;
   if (a_on != b_on) return a_on;
-  if (std::abs(pa.z - pb.z) > tol) return pa.z < pb.z;
-  return std::abs(pa.y) < std::abs(pb.y);
+  if (std::abs(a.z - b.z) > tol) return a.z < b.z;
+  return std::abs(a.y) < std::abs(b.y);
 }
 
 }  // namespace
@@ -409,7 +395,7 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       if (!pl.closed) {
         snap_end(ends.points.front().point, row.x, surface, boundary, end_tol);
         snap_end(ends.points.back().point, row.x, surface, boundary, end_tol);
-        if (runs_down(ends.points.front().point, ends.points.back().point, tie, centre)) {
+        if (girth_before(ends.points.back().point, ends.points.front().point, tie, centre)) {
           std::reverse(ends.points.begin(), ends.points.end());
         }
       }
@@ -429,9 +415,10 @@ std::vector<Row> extract_rows(const HullQuery& query, const SurfaceMesh& surface
       grade_by_turning(c);
       row.curves.push_back(std::move(c));
     }
-    std::stable_sort(
-        row.curves.begin(), row.curves.end(),
-        [&](const RowCurve& a, const RowCurve& b) { return girth_before(a, b, tie, centre); });
+    std::stable_sort(row.curves.begin(), row.curves.end(),
+                     [&](const RowCurve& a, const RowCurve& b) {
+                       return girth_before(a.points.front(), b.points.front(), tie, centre);
+                     });
   });
   drop_fragments(rows, 2 * std::max({metric.size.x, metric.size.y, metric.size.z}));
   return rows;
