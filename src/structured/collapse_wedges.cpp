@@ -8,8 +8,9 @@
 // exactly where the rows and the edge curves put it.
 //
 // collect (wedges, in face order) -> score (each of the two merges against the panels as they
-// stand) -> apply the better, when it leaves fewer panels failing a rule nearby, or as many and a
-// milder worst -> drop the removed faces. Serial and in face order, so deterministic.
+// stand; a merge that leaves a face flat, three corners on a line, is not one) -> apply the
+// better, when it leaves fewer panels failing a rule nearby, or as many and a milder worst ->
+// drop the removed faces. Serial and in face order, so deterministic.
 #include <algorithm>
 #include <set>
 
@@ -72,7 +73,7 @@ std::size_t collapse_wedges(std::span<const NodeSlot> slots,
     for (auto [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
       if (merged[from] || !freedom.may_merge(from, to, slots)) continue;
       m.merge_node(from, to);
-      if (m.manifold(core)) {
+      if (m.manifold(core) && !m.flat(core)) {
         const EditableFaces::Score sc = m.score(core, judged);
         if (sc.better_than(best)) {
           best = sc;

@@ -20,6 +20,8 @@ namespace hm::structured {
 // A panel is distorted past these (the rules themselves; the scores use kSideTarget and
 // kAreaTarget, a little inside them).
 inline constexpr double kSideLimit = 4, kAreaLimit = 2;
+// A face is flat under this area over its longest side squared (a corner of about 1e-4 degree).
+inline constexpr double kFlatArea = 1e-6;
 
 // The mesh as the repairs change it: faces (kInvalid in slot 0: removed), vertex -> faces, and
 // positions. Small local edits; queries read it as it stands.
@@ -60,6 +62,10 @@ class EditableFaces {
   // No face in `core` repeats a corner, every side of them has at most two faces, and no two
   // faces have the same corners.
   bool manifold(const std::set<Index>& core) const;
+
+  // Some face in `core` has next to no area (under kFlatArea of its longest side squared): a
+  // merge along a straight boundary can leave three corners on one line.
+  bool flat(const std::set<Index>& core) const;
 
   Index add_face(const Face& h) {
     faces_.push_back(h);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mesh/adjacency.h"
+#include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -94,6 +95,17 @@ TEST(CollapseWedges, ThinQuadsAndFixedNodesAreLeft) {
   const std::vector<Face> faces = fixed.mesh.faces;
   EXPECT_EQ(collapse_wedges(fixed.slots, {}, 0.35, fixed.mesh), 0u);
   EXPECT_EQ(fixed.mesh.faces, faces);
+}
+
+// The guard the wedge collapse puts on its merges: three corners on one line (a short side
+// merged along a straight transom edge) are flat; a thin but true triangle is not.
+TEST(CollapseWedges, ThreeCornersOnALineAreFlat) {
+  std::vector<Vec3d> positions{{0, 0, 0}, {2, 1, 0}, {4, 2, 0}, {4, 2.1, 0}};
+  std::vector<Face> faces{{0, 1, 2, kInvalid}, {0, 2, 3, kInvalid}};
+  EditableFaces m(faces, positions);
+  EXPECT_TRUE(m.flat({0}));
+  EXPECT_FALSE(m.flat({1}));  // a corner of 1.1 degrees
+  EXPECT_TRUE(m.flat({0, 1}));
 }
 
 }  // namespace
