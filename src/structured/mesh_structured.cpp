@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "structured/bridge_starts.h"
 #include "structured/cap_ends.h"
 #include "structured/close_border_gaps.h"
 #include "structured/join_rows.h"
@@ -168,8 +169,11 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   std::vector<NodeSlot>& slots = layout.slots;
   const std::vector<std::vector<Index>>& first_vertex = layout.first_vertex;
   const ZipOptions zo{options.min_opposite_ratio, options.max_warp};
+  const std::vector<std::vector<StartBridge>> bridges =
+      bridge_starts(surface, adjacency, rows, first_vertex, metric,
+                    kPlaneTolerance * query.length_scale(), mesh, slots);
   const std::vector<StripFaces> strips =
-      zip_strips(rows, nodes, first_vertex, mesh.positions, zo, row_seconds);
+      zip_strips(rows, nodes, first_vertex, bridges, mesh.positions, zo, row_seconds);
 
   rep.seconds_grow = seconds_since(t);
   commit_strips(rows, strips, out);

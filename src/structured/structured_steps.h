@@ -217,9 +217,19 @@ struct StripFaces {
   bool unmatched = false;  // the rows' curve counts differ (left to join_rows)
   double seconds = 0;      // growing its forward row and zipping it
 };
+// A chain laid ahead of one row's first curve node in a strip (bridge_starts.h).
+struct StartBridge {
+  std::size_t curve = 0;
+  bool forward = false;      // it leads row j + 1's curve (else row j's)
+  std::vector<Index> nodes;  // the other row's first node, then new boundary nodes
+  std::vector<double> at;    // metric arc length of each node from the first
+  double length = 0;         // metric arc length from the first node to the led curve's start
+};
 // Strip j joins rows j and j + 1, zipped segment by segment between the labels both carry.
+// bridges[j]: the chains laid ahead of strip j's curves (empty: none).
 std::vector<StripFaces> zip_strips(std::span<const Row> rows, std::span<const RowNodes> nodes,
                                    std::span<const std::vector<Index>> first_vertex,
+                                   std::span<const std::vector<StartBridge>> bridges,
                                    std::span<const Vec3d> positions, const ZipOptions& zo,
                                    std::span<const double> row_seconds);
 // Appends the strips' faces in row order, numbers the blocks (a column's share between two labels

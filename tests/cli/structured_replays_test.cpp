@@ -159,5 +159,26 @@ TEST(CliStructured, AnImmersedTransomCutInTwoIsCappedInGirthOrder) {
                            "--auto-blocks --panels 6000 --draft 10 --trim 2"});
 }
 
+// ship_449_patches.iges trimmed by the stern: the open transom is deep under the waterline, and
+// the last station aft of its edge cuts only the side above that edge, while the one before cuts
+// from the keel up. The strip between was zipped curve to curve, and its bottom panels reached
+// across the open transom to the far start (9 and 7 pairs of panels through each other in these
+// two runs). The boundary between the two starts is now laid ahead of the shorter curve.
+TEST(CliStructured, AStripByAnImmersedTransomRunsAlongItsEdge) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  expect_one_sound_border(ship, "cli_structured_ship449_transom_edge",
+                          {"--auto-blocks --panels 6000 --draft 12 --trim 3",
+                           "--auto-blocks --panels 6000 --draft 16 --trim 3"});
+}
+
+// The same transom at 22 m: its edge runs straight up the flat side, with a row's node on it, and
+// the wedge collapse merged a short side there into a triangle of three points on the edge (a
+// face of no area, which --validate refuses). A merge that leaves a flat face is not made.
+TEST(CliStructured, AWedgeOnAStraightTransomEdgeIsNotCollapsedFlat) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  expect_one_sound_border(ship, "cli_structured_ship449_flat_wedge",
+                          {"--auto-blocks --panels 6000 --draft 22 --trim 3"});
+}
+
 }  // namespace
 }  // namespace hm
