@@ -25,6 +25,13 @@ namespace {
 // The slab of a strip reaches this far beyond its two stations (in panel lengths along x): the
 // boundary between two curves crosses a station plane a little where it is refined on the NURBS.
 constexpr double kSlabMargin = 0.25;
+// Beyond the strip's other station a link may reach only this far (panel lengths along x): a
+// boundary that crosses that station's plane lies partly in the next strip, where that row's
+// curves end on it (ship_449_patches at 5 m and --trim 2: the waterline round the tip of the
+// stern's shelf, 0.15 panel forward of the strip, joined the shelf's two sides there, and the
+// piece of hull inboard of the shelf was capped 1.5 m long across the strips aft: 158 pairs of
+// panels through each other).
+constexpr double kFarMargin = 0.05;
 // A cap may reach farther beyond the strip's far station: that station drops a fragment of a
 // curve that ends just beyond it (a stem's last sliver above a bulb). The narrowest reach that
 // gives a reading wins.
@@ -116,7 +123,9 @@ class Joiner {
   // Strip j: links within [lo, hi], caps within [cap_lo, cap_hi].
   bool by_groups(std::size_t j, double lo, double hi, double cap_lo, double cap_hi,
                  std::size_t& caps) {
-    const std::vector<Group> a = groups(j, lo, hi, 1), b = groups(j + 1, lo, hi, -1);
+    const double far = kFarMargin * metric_.size.x;
+    const std::vector<Group> a = groups(j, lo, std::min(hi, rows_[j + 1].x + far), 1),
+                             b = groups(j + 1, std::max(lo, rows_[j].x - far), hi, -1);
     std::vector<std::vector<Vec3d>> cap_a, cap_b;
     for (const Group& g : a) cap_a.push_back(cap_path(g, cap_lo, cap_hi));
     for (const Group& g : b) cap_b.push_back(cap_path(g, cap_lo, cap_hi));

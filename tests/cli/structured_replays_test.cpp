@@ -180,5 +180,17 @@ TEST(CliStructured, AWedgeOnAStraightTransomEdgeIsNotCollapsedFlat) {
                           {"--auto-blocks --panels 6000 --draft 22 --trim 3"});
 }
 
+// ship_449_patches.iges at 5 m trimmed 2 degrees by the stern: the stern's shelf stands above
+// the waterline from 0.17 m forward of one station (the tip of the waterline round it) aft. The
+// join of the next station's curves took the waterline round that tip, beyond the strip's
+// forward station, for a link, and the piece of hull inboard of the shelf was capped 1.5 m long
+// across the strips aft of it: 158 pairs of panels through each other. A link may now reach
+// only 0.05 panel beyond the strip's other station.
+TEST(CliStructured, AShelfTipBeyondAStripDoesNotJoinTheCurvesAcrossIt) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  expect_one_sound_border(ship, "cli_structured_ship449_shelf_tip",
+                          {"--auto-blocks --panels 1500 --draft 5 --trim 2"});
+}
+
 }  // namespace
 }  // namespace hm
