@@ -164,7 +164,12 @@ std::vector<Face> split_polygon(std::span<const Vec3d> pos, const std::vector<In
       const Vec3d& b = pos[left[i]];
       const Vec3d& c = pos[left[(i + 1) % m]];
       if (!(dot(cross(b - a, c - b), normal) > 0)) continue;
-      const double q = min_angle(a, b, c);
+      // With four corners left the ear decides the last triangle too: a node put into a
+      // triangle's side lies on a line with that side's ends, and the ear beside it would leave
+      // a triangle of no area (ship_449_patches at 8.5 m heeled 5 degrees).
+      const double q = m == 4
+                           ? std::min(min_angle(a, b, c), min_angle(c, pos[left[(i + 2) % m]], a))
+                           : min_angle(a, b, c);
       if (q > best) {
         best = q;
         best_i = i;

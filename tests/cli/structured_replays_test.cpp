@@ -192,5 +192,20 @@ TEST(CliStructured, AShelfTipBeyondAStripDoesNotJoinTheCurvesAcrossIt) {
                           {"--auto-blocks --panels 1500 --draft 5 --trim 2"});
 }
 
+// ship_449_patches.iges heeled 5 degrees at 8.5 m: where the two sides' seams meet at the
+// waterline by the stern, a starboard node went into a port triangle's side, and the split cut
+// the far corner's ear first, leaving the node and the side's ends as a triangle of no area, which
+// --validate refused. (Its stern's shelf at the heeled waterline still has panels through each
+// other: README, "Heeled hulls".)
+TEST(CliStructured, AHeeledSeamSplitLeavesNoPanelOfNoArea) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  const auto out = test::scratch_dir("cli_structured_ship449_heeled_seam") / "panels.obj";
+  const nlohmann::json q =
+      structured_quality(ship, out, "--auto-blocks --panels 2000 --draft 8.5 --heel 5");
+  ASSERT_TRUE(q.is_object());
+  EXPECT_EQ(q["nonmanifold_edges"], 0);
+  EXPECT_GT(q["min_triangle_angle_deg"].get<double>(), 0.1);
+}
+
 }  // namespace
 }  // namespace hm

@@ -123,6 +123,37 @@ TEST(JoinSides, NodesBetweenTheOthersGoIntoTheirEdgesAndThePanelsSplit) {
   EXPECT_EQ(block_faces, j.mesh.face_count());
 }
 
+// A node put into a triangle's side lies on a line with that side's ends. Cutting the ear of
+// the best shape first (here the whole triangle's far corner) left the node and the side's ends
+// as the last triangle, of no area; the ear is now chosen with the triangle it leaves.
+TEST(JoinSides, ATriangleSplitAtANodeOnItsSideLeavesNoFlatPiece) {
+  StructuredMesh port;
+  SurfaceMesh& m = port.mesh;
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {1, 1.7, 0}};
+  m.faces = {{0, 1, 2, kInvalid}};
+  m.face_patch = {0};
+  m.face_block = {0};
+  m.vertex_patch.assign(3, 0);
+  m.vertex_uv.assign(3, Vec2d{0, 0});
+  BlockReport b;
+  b.triangles = 1;
+  port.report.blocks.push_back(b);
+  port.report.triangles = 1;
+  SideJoin c;
+  const StructuredMesh j = join_sides(port, side({0, 1.9, 2}, false), seam(), &c);
+  EXPECT_EQ(c.inserted, 1u);
+  EXPECT_EQ(open_seam_edges(j.mesh), 0u);
+  EXPECT_EQ(faces_turned(j.mesh), 0u);
+  EXPECT_NEAR(total_area(j.mesh), 1.7 + 2.0, 1e-12);
+  for (const Face& f : j.mesh.faces) {
+    double longest = 0;
+    for (int k = 0; k < corner_count(f); ++k)
+      longest = std::max(longest, squared_norm(j.mesh.positions[f[(k + 1) % corner_count(f)]] -
+                                               j.mesh.positions[f[k]]));
+    EXPECT_GT(face_area(j.mesh.positions, f), 1e-3 * longest);
+  }
+}
+
 TEST(JoinSides, ASeamEndBeyondTheOtherSideStaysOpen) {
   SideJoin c;
   // Starboard's seam runs one panel further aft: that edge has nothing to meet.
