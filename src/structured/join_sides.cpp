@@ -107,6 +107,13 @@ double min_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d)
   return std::min(min_angle(a, b, c), min_angle(c, d, a));
 }
 
+// A triangle of next to no area: under kFlatArea of its longest side squared.
+constexpr double kFlatArea = 1e-6;
+bool flat(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const double longest = std::max({squared_norm(b - a), squared_norm(c - b), squared_norm(a - c)});
+  return !(0.5 * norm(cross(b - a, c - a)) > kFlatArea * longest);
+}
+
 // The polygon (face corners with nodes inserted into its sides) as faces. A quad whose nodes all
 // lie on one side keeps a quad: triangles fan from the far side's ends to the inserted nodes,
 // with the quad between, where its smallest angle is largest. Otherwise ears are cut, each time
@@ -164,12 +171,12 @@ std::vector<Face> split_polygon(std::span<const Vec3d> pos, const std::vector<In
       const Vec3d& b = pos[left[i]];
       const Vec3d& c = pos[left[(i + 1) % m]];
       if (!(dot(cross(b - a, c - b), normal) > 0)) continue;
+      double q = min_angle(a, b, c);
       // With four corners left the ear decides the last triangle too: a node put into a
       // triangle's side lies on a line with that side's ends, and the ear beside it would leave
-      // a triangle of no area (ship_449_patches at 8.5 m heeled 5 degrees).
-      const double q = m == 4
-                           ? std::min(min_angle(a, b, c), min_angle(c, pos[left[(i + 2) % m]], a))
-                           : min_angle(a, b, c);
+      // a triangle of no area (ship_449_patches at 8.5 m heeled 5 degrees). Such an ear comes
+      // after every other (before none turning the face's way).
+      if (m == 4 && flat(a, c, pos[left[(i + 2) % m]])) q = -0.5 + 0.1 * q;
       if (q > best) {
         best = q;
         best_i = i;

@@ -197,14 +197,21 @@ TEST(CliStructured, AShelfTipBeyondAStripDoesNotJoinTheCurvesAcrossIt) {
 // the far corner's ear first, leaving the node and the side's ends as a triangle of no area, which
 // --validate refused. (Its stern's shelf at the heeled waterline still has panels through each
 // other: README, "Heeled hulls".)
+// kcs.iges at 0.3174 m heeled 20.8 degrees: a seam polygon lying in the plane by the stern, where
+// choosing every ear by the triangle it leaves (tried first) gave an edge with three faces.
 TEST(CliStructured, AHeeledSeamSplitLeavesNoPanelOfNoArea) {
   HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  HM_REQUIRE_SHARED_HULL(kcs, "kcs.iges");
   const auto out = test::scratch_dir("cli_structured_ship449_heeled_seam") / "panels.obj";
   const nlohmann::json q =
       structured_quality(ship, out, "--auto-blocks --panels 2000 --draft 8.5 --heel 5");
   ASSERT_TRUE(q.is_object());
   EXPECT_EQ(q["nonmanifold_edges"], 0);
   EXPECT_GT(q["min_triangle_angle_deg"].get<double>(), 0.1);
+  const nlohmann::json k =
+      structured_quality(kcs, out, "--auto-blocks --panels 800 --draft 0.3174 --heel 20.8");
+  ASSERT_TRUE(k.is_object());
+  EXPECT_EQ(k["nonmanifold_edges"], 0);
 }
 
 }  // namespace
