@@ -17,7 +17,8 @@ namespace hm::structured {
 
 // bridges[j]: strip j's bridges, at most one per curve. A curve pair is bridged when one start
 // lies on the centre plane (|y| <= centre, m) and the other off it, more than two panels across,
-// and the surface's boundary joins them inside the strip's slab. The new nodes are appended to
+// and the surface's boundary joins them inside the strip's slab, at least a third as long as the
+// curve from the centre plane. The new nodes are appended to
 // mesh and slots (fixed boundary nodes), strip by strip in row order.
 std::vector<std::vector<StartBridge>> bridge_starts(
     const SurfaceMesh& surface, const EdgeAdjacency& adj, std::span<const Row> rows,

@@ -132,6 +132,7 @@ struct NodeSlot {
   double s = 0;
   bool fixed = true;      // relocation leaves it (border rows, breakpoints, cap nodes)
   bool on_break = false;  // a curve end, knuckle or plane crossing: exact as it stands
+  bool bridge = false;    // on the boundary between two rows' starts (bridge_starts)
 };
 struct NodeLayout {
   std::vector<NodeSlot> slots;                   // one per vertex

@@ -164,5 +164,38 @@ TEST(RepairBorderPanels, NothingChangesWhereNoRepairHelps) {
   EXPECT_EQ(repair_border_panels(query, r.slots, {}, r.mesh).distorted, 0u);
 }
 
+// A thin strip along the plate's end x = 7, where bridge_starts laid the boundary between two
+// rows' starts (an open transom's edge a little aft of the last station): no face lies across
+// that side, but its nodes are a bridge's, and the strip is removed as along a cut station. The
+// same strip along a plain boundary is no border panel's.
+TEST(RepairBorderPanels, ThinStripAlongABridgeIsRemoved) {
+  const Plate p = plate();
+  const HullQuery query(p.patches, p.fine);
+  for (const bool bridge : {false, true}) {
+    Panels m = panels({0, 1, 2, 3, 4, 5, 6, 6.9, 7}, false);
+    for (std::size_t v = 0; v < m.slots.size(); ++v) {
+      if (m.mesh.positions[v].x != 7) continue;
+      m.slots[v] = NodeSlot{};  // a boundary node, fixed
+      m.slots[v].bridge = bridge;
+    }
+    const std::size_t before = failing(m.mesh);
+    ASSERT_GE(before, 6u) << bridge;
+    const BorderRepairCounts c = repair_border_panels(query, m.slots, {}, m.mesh);
+    if (!bridge) {
+      EXPECT_EQ(c.removed, 0u);
+      EXPECT_EQ(failing(m.mesh), before);
+      continue;
+    }
+    EXPECT_EQ(c.removed, 6u);
+    EXPECT_EQ(failing(m.mesh), 0u);
+    double area = 0;
+    for (const Face& f : m.mesh.faces) area += face_area(m.mesh.positions, f);
+    EXPECT_NEAR(area, kLength * kWidth, 1e-9);
+    const EdgeAdjacency adj = build_edge_adjacency(m.mesh.faces, m.mesh.vertex_count());
+    EXPECT_TRUE(adj.nonmanifold_edges.empty());
+    EXPECT_EQ(adj.boundary_loops.size(), 1u);
+  }
+}
+
 }  // namespace
 }  // namespace hm::structured
