@@ -36,6 +36,11 @@ std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAd
                                         double x_lo = -std::numeric_limits<double>::infinity(),
                                         double x_hi = std::numeric_limits<double>::infinity());
 
+// A strip's slab reaches this far beyond its two stations (panel lengths along x): the boundary
+// between two rows' curves crosses a station plane a little where it is refined on the NURBS.
+// The joins and the bridges between rows read boundary paths within it.
+inline constexpr double kSlabMargin = 0.25;
+
 // Metric arc-length fractions (0 to 1) of a chain of mesh nodes.
 std::vector<double> chain_fractions(std::span<const Index> ids, const SurfaceMesh& mesh,
                                     const Metric& metric);

@@ -19,9 +19,6 @@ constexpr double kApartPanels = 2.0;
 // their panels and crossed nothing before), while ship_449_patches' crossed at 7-16 panels
 // against 18-29.
 constexpr double kBridgeShare = 1.0 / 3.0;
-// The strip's slab reaches this far beyond its two stations (panel lengths along x), as the
-// joins' does: the boundary is refined on the NURBS a little off the station planes.
-constexpr double kSlabMargin = 0.25;
 
 }  // namespace
 

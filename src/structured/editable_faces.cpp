@@ -92,15 +92,8 @@ void EditableFaces::rules(Index f, double& side, double& area) const {
 }
 
 bool EditableFaces::flat(const std::set<Index>& core) const {
-  for (Index f : core) {
-    if (removed(f)) continue;
-    const Face& h = faces_[f];
-    const int n = corner_count(h);
-    double longest = 0;
-    for (int c = 0; c < n; ++c)
-      longest = std::max(longest, squared_norm(positions_[h[(c + 1) % n]] - positions_[h[c]]));
-    if (!(face_area(positions_, h) > kFlatArea * longest)) return true;
-  }
+  for (Index f : core)
+    if (!removed(f) && flat_face(positions_, faces_[f])) return true;
   return false;
 }
 

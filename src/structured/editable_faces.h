@@ -20,8 +20,6 @@ namespace hm::structured {
 // A panel is distorted past these (the rules themselves; the scores use kSideTarget and
 // kAreaTarget, a little inside them).
 inline constexpr double kSideLimit = 4, kAreaLimit = 2;
-// A face is flat under this area over its longest side squared (a corner of about 1e-4 degree).
-inline constexpr double kFlatArea = 1e-6;
 
 // The mesh as the repairs change it: faces (kInvalid in slot 0: removed), vertex -> faces, and
 // positions. Small local edits; queries read it as it stands.

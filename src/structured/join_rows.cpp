@@ -22,9 +22,6 @@
 namespace hm::structured {
 namespace {
 
-// The slab of a strip reaches this far beyond its two stations (in panel lengths along x): the
-// boundary between two curves crosses a station plane a little where it is refined on the NURBS.
-constexpr double kSlabMargin = 0.25;
 // Beyond the strip's other station a link may reach only this far (panel lengths along x): a
 // boundary that crosses that station's plane lies partly in the next strip, where that row's
 // curves end on it (ship_449_patches at 5 m and --trim 2: the waterline round the tip of the

@@ -107,13 +107,6 @@ double min_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d)
   return std::min(min_angle(a, b, c), min_angle(c, d, a));
 }
 
-// A triangle of next to no area: under kFlatArea of its longest side squared.
-constexpr double kFlatArea = 1e-6;
-bool flat(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const double longest = std::max({squared_norm(b - a), squared_norm(c - b), squared_norm(a - c)});
-  return !(0.5 * norm(cross(b - a, c - a)) > kFlatArea * longest);
-}
-
 // The polygon (face corners with nodes inserted into its sides) as faces. A quad whose nodes all
 // lie on one side keeps a quad: triangles fan from the far side's ends to the inserted nodes,
 // with the quad between, where its smallest angle is largest. Otherwise ears are cut, each time
@@ -176,7 +169,8 @@ std::vector<Face> split_polygon(std::span<const Vec3d> pos, const std::vector<In
       // triangle's side lies on a line with that side's ends, and the ear beside it would leave
       // a triangle of no area (ship_449_patches at 8.5 m heeled 5 degrees). Such an ear comes
       // after every other (before none turning the face's way).
-      if (m == 4 && flat(a, c, pos[left[(i + 2) % m]])) q = -0.5 + 0.1 * q;
+      const Face last{left[(i + m - 1) % m], left[(i + 1) % m], left[(i + 2) % m], kInvalid};
+      if (m == 4 && structured::flat_face(pos, last)) q = -0.5 + 0.1 * q;
       if (q > best) {
         best = q;
         best_i = i;

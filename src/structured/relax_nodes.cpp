@@ -118,6 +118,14 @@ double side_ratio(std::span<const Vec3d> p, const Face& f) {
   return lo > 0 ? hi / lo : std::numeric_limits<double>::infinity();
 }
 
+bool flat_face(std::span<const Vec3d> p, const Face& f) {
+  const int n = corner_count(f);
+  double longest = 0;
+  for (int c = 0; c < n; ++c)
+    longest = std::max(longest, squared_norm(p[f[(c + 1) % n]] - p[f[c]]));
+  return !(face_area(p, f) > kFlatArea * longest);
+}
+
 std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
                           std::span<const Face> faces, std::vector<Vec3d>& positions, int passes) {
   const std::size_t nv = positions.size(), nf = faces.size();

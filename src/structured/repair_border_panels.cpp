@@ -76,6 +76,19 @@ bool folds(const EditableFaces& m, const std::set<Index>& core) {
   return false;
 }
 
+// Whether side c of quad p lies on a bridge between two rows' starts (bridge_starts) with the
+// quad thin on it: its sides off the bridge under kBridgeThin of the side on it. The strip
+// between the bridge and the row before is as thin as the stations are close there; a wider one
+// is left, as its inner nodes would move far (ship_449_patches at 15 m, --trim 3 and 1,500
+// panels: 2.8 m, and a panel crossed another).
+bool on_thin_bridge(const EditableFaces& m, std::span<const NodeSlot> slots, const Face& p, int c) {
+  const Index b0 = p[c], b1 = p[(c + 1) % 4], i0 = p[(c + 3) % 4], i1 = p[(c + 2) % 4];
+  if (!slots[b0].bridge || !slots[b1].bridge) return false;
+  const double thin = kBridgeThin * norm(m.position(b1) - m.position(b0));
+  return norm(m.position(i0) - m.position(b0)) < thin &&
+         norm(m.position(i1) - m.position(b1)) < thin;
+}
+
 }  // namespace
 
 BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const NodeSlot> slots,
@@ -99,17 +112,9 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
     const Face p = m.face(f);
     for (int c = 0; c < 4; ++c) {
       const Index g = m.across(f, p[c], p[(c + 1) % 4]);
-      // The boundary between two rows' starts, laid by bridge_starts, is a border too where the
-      // panel on it is thin (its sides off the boundary under half the side on it): the strip
-      // between the boundary and the row before is as thin as the stations are close there. A
-      // wider one is left, as its inner nodes would move far (ship_449_patches at 15 m, --trim 3
-      // and 1,500 panels: 2.8 m, and a panel crossed another).
-      const Index b0 = p[c], b1 = p[(c + 1) % 4], i0 = p[(c + 3) % 4], i1 = p[(c + 2) % 4];
-      const double thin = kBridgeThin * norm(m.position(b1) - m.position(b0));
-      const bool bridge = g == kInvalid && slots[b0].bridge && slots[b1].bridge &&
-                          norm(m.position(i0) - m.position(b0)) < thin &&
-                          norm(m.position(i1) - m.position(b1)) < thin;
-      if (!bridge && (g == kInvalid || mesh.face_block[g] == mesh.face_block[f])) continue;
+      const bool border =
+          g == kInvalid ? on_thin_bridge(m, slots, p, c) : mesh.face_block[g] != mesh.face_block[f];
+      if (!border) continue;
       double side = 0, area = 0;
       m.rules(f, side, area);
       if (side <= kSideLimit && area <= kAreaLimit) return false;

@@ -243,6 +243,11 @@ void commit_strips(std::span<const Row> rows, std::span<const StripFaces> strips
 // neighbour area ratio 2): a little inside the limits, so that a panel sitting exactly on one
 // (a count-change triangle has half its neighbour quad's area) is pushed in.
 inline constexpr double kSideTarget = 3.8, kAreaTarget = 1.9;
+// A face is flat when its area is under kFlatArea of its longest side squared (a corner of about
+// 1e-4 degree): three corners on one line, as a merge or a split along a straight boundary can
+// leave them.
+inline constexpr double kFlatArea = 1e-6;
+bool flat_face(std::span<const Vec3d> positions, const Face& f);
 // Longest over shortest side of face f; infinite for a side of zero length.
 double side_ratio(std::span<const Vec3d> positions, const Face& f);
 

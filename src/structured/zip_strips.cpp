@@ -65,24 +65,6 @@ const StartBridge* bridge_of(const std::vector<StartBridge>& bridges, std::size_
   return nullptr;
 }
 
-// No corner of a face under kMinCornerDeg or over 180 degrees less that: a bridge along a
-// straight boundary that a row's node lies on (a transom's edge up a flat side) can make a
-// triangle of three points on one line, and the strip is then zipped without it.
-constexpr double kMinCornerDeg = 1.0;
-bool sound(std::span<const Face> faces, std::span<const Vec3d> positions) {
-  const double lo = std::cos(kMinCornerDeg * M_PI / 180);
-  for (const Face& f : faces) {
-    const int n = f[3] == kInvalid ? 3 : 4;
-    for (int k = 0; k < n; ++k) {
-      const Vec3d& p = positions[f[k]];
-      const Vec3d u = positions[f[(k + 1) % n]] - p, v = positions[f[(k + n - 1) % n]] - p;
-      const double nu = norm(u), nv = norm(v);
-      if (!(nu > 0) || !(nv > 0) || std::abs(dot(u, v)) >= lo * nu * nv) return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 std::vector<StripFaces> zip_strips(std::span<const Row> rows, std::span<const RowNodes> nodes,
@@ -135,25 +117,17 @@ std::vector<StripFaces> zip_strips(std::span<const Row> rows, std::span<const Ro
         chain(nodes[j].s[c], first_vertex[j][c], a0, a1, ids_a, fa);
         chain(nodes[j + 1].s[c], first_vertex[j + 1][c], b0, b1, ids_b, fb);
         if (ids_a.size() < 1 || ids_b.size() < 1) continue;
-        const std::size_t before = sf.faces.size();
-        ZipCounts n;
-        const StartBridge* br =
-            labels[q].kind == BreakKind::kLow ? bridge_of(bridges[j], c) : nullptr;
-        if (br) {
-          std::vector<Index> led_a = ids_a, led_b = ids_b;
-          std::vector<double> led_fa = fa, led_fb = fb;
-          if (br->forward) {
-            lead(*br, b1 - b0, led_b, led_fb);
-          } else {
-            lead(*br, a1 - a0, led_a, led_fa);
-          }
-          n = zip_chains(led_a, led_fa, led_b, led_fb, positions, zo, sf.faces);
-          if (!sound(std::span(sf.faces).subspan(before), positions)) {
-            sf.faces.resize(before);
-            br = nullptr;
+        if (labels[q].kind == BreakKind::kLow) {
+          if (const StartBridge* br = bridge_of(bridges[j], c)) {
+            if (br->forward) {
+              lead(*br, b1 - b0, ids_b, fb);
+            } else {
+              lead(*br, a1 - a0, ids_a, fa);
+            }
           }
         }
-        if (!br) n = zip_chains(ids_a, fa, ids_b, fb, positions, zo, sf.faces);
+        const std::size_t before = sf.faces.size();
+        const ZipCounts n = zip_chains(ids_a, fa, ids_b, fb, positions, zo, sf.faces);
         sf.counts.quads += n.quads;
         sf.counts.triangles += n.triangles;
         sf.counts.split += n.split;
