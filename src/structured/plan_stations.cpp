@@ -4,6 +4,7 @@
 // sections estimate that walk; stations are then placed by equidistribution between the border
 // stations (the ends and the cut stations), which are fixed first.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -89,6 +90,60 @@ double section_change(const Sample& a, const Sample& b) {
   return worst / std::max(std::abs(b.x - a.x), 1e-300);
 }
 
+// How transverse a fine triangle must be to count as part of an end face: its unit normal's x.
+constexpr double kTransverse = 0.95;
+
+// How far the flat transverse faces at the hull's ends (a transom, raked, or leaning with trim)
+// reach along x: [0] the largest x of those at the aft end (low x), [1] the smallest of those at
+// the fore end; -inf and +inf where there is none. An end face is a set of fine triangles within
+// kTransverse of x, joined at their corners, one of which lies within `reach` of the end and one
+// on a knuckle (a transom's edge: the blunt nose of a bulb or a sonar dome, smooth, is no end
+// face). A station inside that reach cuts the face in a row lying across it, which the next
+// station's row cannot be zipped to (a chine hull's transom at 1 degree of trim and 6,000 panels).
+std::array<double, 2> end_faces(const SurfaceMesh& surface, const FeatureSet& features,
+                                const BBox3d& box, double reach) {
+  const std::size_t nv = surface.vertex_count();
+  std::vector<Index> parent(nv);
+  for (std::size_t v = 0; v < nv; ++v) parent[v] = static_cast<Index>(v);
+  auto root = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<std::uint8_t> on_face(nv, 0);
+  for (const Face& f : surface.faces) {
+    if (std::abs(face_normal(surface.positions, f).x) < kTransverse) continue;
+    const int n = corner_count(f);
+    for (int c = 0; c < n; ++c) {
+      on_face[f[c]] = 1;
+      const Index a = root(f[c]), b = root(f[(c + 1) % n]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  // The components with a corner near each end (bits 0: aft, 1: fore) and one on a knuckle (2).
+  std::vector<std::uint8_t> kind(nv, 0);
+  for (const FeatureLine& l : features.knuckles) {
+    for (Index v : l.vertices)
+      if (on_face[v]) kind[root(v)] |= 4;
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!on_face[v]) continue;
+    const double x = surface.positions[v].x;
+    if (x < box.lo.x + reach) kind[root(static_cast<Index>(v))] |= 1;
+    if (x > box.hi.x - reach) kind[root(static_cast<Index>(v))] |= 2;
+  }
+  std::array<double, 2> out{-std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::infinity()};
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!on_face[v]) continue;
+    const std::uint8_t k = kind[root(static_cast<Index>(v))];
+    const std::uint8_t e = k & 4 ? k : 0;
+    const double x = surface.positions[v].x;
+    if (e & 1) out[0] = std::max(out[0], x);
+    if (e & 2) out[1] = std::min(out[1], x);
+  }
+  return out;
+}
+
 // Adds x to cuts unless a cut lies within `gap` already.
 void add_cut(std::vector<double>& cuts, double x, double gap) {
   for (double c : cuts)
@@ -155,8 +210,12 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
 
   // The end stations: about one panel in from the ends (the caps take that panel), and never
   // beyond the last sample that cuts the hull.
-  const double x_first = std::max(samples[first].x, box.lo.x + step[first]);
-  const double x_last = std::min(samples[last - 1].x, box.hi.x - step[last - 1]);
+  // They also stay a fifth of a panel clear of an end face's reach.
+  const std::array<double, 2> faces = end_faces(surface, features, box, kMinStepShare * hx);
+  const double x_first =
+      std::max({samples[first].x, box.lo.x + step[first], faces[0] + kMinStepShare * hx});
+  const double x_last =
+      std::min({samples[last - 1].x, box.hi.x - step[last - 1], faces[1] - kMinStepShare * hx});
   if (!(x_last > x_first)) throw GeometryError("structured: the hull is shorter than one panel");
   // Cut stations: the user's x planes, then the automatic ones.
   // Cuts closer than this merge: a block is at least a few panels long.

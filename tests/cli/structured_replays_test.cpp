@@ -105,6 +105,31 @@ void expect_one_sound_border(const std::filesystem::path& hull, const std::strin
   }
 }
 
+// A generated chine hull trimmed by the bow: its flat transom leans, spanning 0.09 m of x at 1
+// degree and 0.19 m at 2, and the first station, a fifth of a panel in from the hull's aft end,
+// cut it. That row lay across the transom, and the strip to the next station's row was zipped
+// from it: here, a panel of no area (which --validate refused) at 6,000 panels, 11 pairs of panels
+// through each other at 4,000, and deviations from the NURBS of 0.30-0.42 m. An end station now
+// stays a fifth of a panel clear of the flat faces at the hull's ends.
+TEST(CliStructured, AnEndStationStaysClearOfALeaningTransom) {
+  const auto dir = test::scratch_dir("cli_structured_leaning_transom");
+  const auto hull = dir / "chine.igs";
+  ASSERT_EQ(test::run_hullmesh("-q generate chine --patches 6 -o " + test::q(hull)).exit_code, 0);
+  const auto out = dir / "panels.obj";
+  for (const char* position :
+       {"--panels 6000 --draft 6.25 --trim 1", "--panels 4000 --draft 6.25 --trim 1",
+        "--panels 3000 --draft 6.25 --trim 2"}) {
+    const nlohmann::json q = structured_quality(hull, out, position);
+    ASSERT_TRUE(q.is_object()) << position;
+    EXPECT_EQ(q["crossing_pairs"], 0) << position;
+    EXPECT_EQ(q["boundary_loops"], 1) << position;
+    const nlohmann::json record =
+        test::read_json(std::filesystem::path(out).replace_extension(".run.json"));
+    // Panels of 0.36-0.51 m; the hull as meshed untrimmed deviates by 0.012-0.025 m.
+    EXPECT_LT(record["results"]["deviation_max_m"].get<double>(), 0.05) << position;
+  }
+}
+
 // kcs.iges draws its centre-plane edge 2.5e-6 m off y = 0. A row's end at the stern, one node
 // in the centre plane and one on the waterline, cut the corner between them, and the gap fill
 // took the centre plane for y == 0 exactly, so it saw no corner: a sliver 0.03 m by 0.014 m
