@@ -130,6 +130,21 @@ TEST(CliStructured, AnEndStationStaysClearOfALeaningTransom) {
   }
 }
 
+// series60.iges at 16,000 panels: at the stem, and where the stern turns up to the centre plane,
+// each section is transverse in part, and the stations crowded until that part's panels were
+// square. The rest of the section became strips of thin quads (81 quads with a side ratio of 4
+// or more, 99.5% within the rule). The step now keeps the rest within the rule where the
+// transverse part's longer panels turn little: 15 quads, 99.9%.
+TEST(CliStructured, StationsCrowdOnlyAsFarAsTheSideRuleAllows) {
+  HM_REQUIRE_SHARED_HULL(series60, "series60.iges");
+  const auto out = test::scratch_dir("cli_structured_series60_thin") / "panels.obj";
+  const nlohmann::json q = structured_quality(series60, out, "--auto-blocks --panels 16000");
+  ASSERT_TRUE(q.is_object());
+  EXPECT_GE(q["side_ratio_share"].get<double>(), 0.998);
+  EXPECT_GE(q["area_ratio_pair_share"].get<double>(), 0.998);
+  EXPECT_EQ(q["crossing_pairs"], 0);
+}
+
 // kcs.iges draws its centre-plane edge 2.5e-6 m off y = 0. A row's end at the stern, one node
 // in the centre plane and one on the waterline, cut the corner between them, and the gap fill
 // took the centre plane for y == 0 exactly, so it saw no corner: a sliver 0.03 m by 0.014 m
