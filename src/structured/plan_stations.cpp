@@ -140,6 +140,9 @@ double section_change(const Sample& a, const Sample& b) {
 
 // How transverse a fine triangle must be to count as part of an end face: its unit normal's x.
 constexpr double kTransverse = 0.95;
+// An end face reaching farther from its end than this share of the length is no transom: the
+// stations are left to cut it rather than lose the hull's ends to the caps.
+constexpr double kMaxEndReach = 0.1;
 
 // How far the flat transverse faces at the hull's ends (a transom, raked, or leaning with trim)
 // reach along x: [0] the largest x of those at the aft end (low x), [1] the smallest of those at
@@ -167,7 +170,7 @@ std::array<double, 2> end_faces(const SurfaceMesh& surface, const FeatureSet& fe
       if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
   }
-  // The components with a corner near each end (bits 0: aft, 1: fore) and one on a knuckle (2).
+  // The components with a corner near each end (bit 0: aft, bit 1: fore) and on a knuckle (bit 2).
   std::vector<std::uint8_t> kind(nv, 0);
   for (const FeatureLine& l : features.knuckles) {
     for (Index v : l.vertices)
@@ -189,6 +192,9 @@ std::array<double, 2> end_faces(const SurfaceMesh& surface, const FeatureSet& fe
     if (e & 1) out[0] = std::max(out[0], x);
     if (e & 2) out[1] = std::min(out[1], x);
   }
+  const double far = kMaxEndReach * (box.hi.x - box.lo.x);
+  if (out[0] > box.lo.x + far) out[0] = -std::numeric_limits<double>::infinity();
+  if (out[1] < box.hi.x - far) out[1] = std::numeric_limits<double>::infinity();
   return out;
 }
 
