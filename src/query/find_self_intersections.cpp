@@ -153,6 +153,24 @@ bool share_a_vertex(const Face& f, const Face& g) {
 
 }  // namespace
 
+bool faces_cross(std::span<const Vec3d> positions, const Face& a, const Face& b, double tol) {
+  if (share_a_vertex(a, b)) return false;
+  // A local frame at a's first corner, as the whole-mesh search centres its box.
+  const Vec3d o = positions[a[0]];
+  auto triangles = [&](const Face& f) {
+    std::vector<std::array<Vec3d, 3>> t{
+        {positions[f[0]] - o, positions[f[1]] - o, positions[f[2]] - o}};
+    if (!is_triangle(f))
+      t.push_back({positions[f[0]] - o, positions[f[2]] - o, positions[f[3]] - o});
+    return t;
+  };
+  Vec3d where;
+  for (const auto& ta : triangles(a))
+    for (const auto& tb : triangles(b))
+      if (triangles_cross(ta, tb, tol, where)) return true;
+  return false;
+}
+
 SelfIntersections find_self_intersections(const SurfaceMesh& mesh, double tol,
                                           std::size_t max_listed) {
   SelfIntersections out;

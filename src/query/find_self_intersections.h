@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "core/types.h"
@@ -36,5 +37,9 @@ struct SelfIntersections {
 // that passes through another exactly along its edges: every face there only touches it.
 SelfIntersections find_self_intersections(const SurfaceMesh& mesh, double tol,
                                           std::size_t max_listed = 16);
+
+// Whether faces a and b cross by that rule (false when they share a vertex): for a few faces
+// under a local edit, where a whole-mesh search would not pay.
+bool faces_cross(std::span<const Vec3d> positions, const Face& a, const Face& b, double tol);
 
 }  // namespace hm

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "mesh/adjacency.h"
+#include "query/find_self_intersections.h"
 
 namespace hm::structured {
 namespace {
@@ -150,6 +151,20 @@ Face renamed(const Face& h, Index from, Index to) {
   if (n == 4) return {c[0], c[1], c[2], c[3]};
   if (n == 3) return {c[0], c[1], c[2], kInvalid};
   return {kInvalid, kInvalid, kInvalid, kInvalid};
+}
+
+std::size_t EditableFaces::crossings(const std::set<Index>& core, const std::set<Index>& near,
+                                     double tol) const {
+  std::size_t n = 0;
+  for (Index f : core) {
+    if (removed(f)) continue;
+    for (Index g : near) {
+      // A pair within core once.
+      if (g == f || removed(g) || (core.count(g) && g < f)) continue;
+      if (faces_cross(positions_, faces_[f], faces_[g], tol)) ++n;
+    }
+  }
+  return n;
 }
 
 void EditableFaces::merge_node(Index from, Index to) {

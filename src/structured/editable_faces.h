@@ -20,6 +20,9 @@ namespace hm::structured {
 // A panel is distorted past these (the rules themselves; the scores use kSideTarget and
 // kAreaTarget, a little inside them).
 inline constexpr double kSideLimit = 4, kAreaLimit = 2;
+// Faces crossing by less than this share of the mesh's largest extent only round off (the quality
+// report's measure).
+inline constexpr double kCrossingShare = 1e-7;
 
 // The mesh as the repairs change it: faces (kInvalid in slot 0: removed), vertex -> faces, and
 // positions. Small local edits; queries read it as it stands.
@@ -64,6 +67,11 @@ class EditableFaces {
   // Some face in `core` has next to no area (under kFlatArea of its longest side squared): a
   // merge along a straight boundary can leave three corners on one line.
   bool flat(const std::set<Index>& core) const;
+
+  // The pairs of a face in `core` and another in `near` that pass through each other
+  // (query/find_self_intersections.h; tol in m): an edit may merge a node so that panels it
+  // drags along cover others that share no corner with them.
+  std::size_t crossings(const std::set<Index>& core, const std::set<Index>& near, double tol) const;
 
   Index add_face(const Face& h) {
     faces_.push_back(h);

@@ -5,6 +5,8 @@
 // repairs, and a wedge whose short side joins two fixed nodes stays as it is.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <set>
 #include <vector>
 
 #include "mesh/adjacency.h"
@@ -106,6 +108,43 @@ TEST(CollapseWedges, ThreeCornersOnALineAreFlat) {
   EXPECT_TRUE(m.flat({0}));
   EXPECT_FALSE(m.flat({1}));  // a corner of 1.1 degrees
   EXPECT_TRUE(m.flat({0, 1}));
+}
+
+// The other guard: a merge may not drag panels across others that share no corner with them. A
+// fan from the waterline node w runs down a stem just left of the first column; the wedge at the
+// column's top has its short side along the waterline, from w to w2 (on a knuckle, so w2 stays).
+// Merging w into w2 would make the wedge a triangle and ease the fan's area ratios, but drag the
+// fan 0.1 m right, over the column's quad below (DTMB 5415's stem at 0.3137 m, 800 panels,
+// trimmed -0.16 degrees: 3 of its 4 pairs of panels through each other). The wedge stays a quad.
+TEST(CollapseWedges, AMergeThatDragsAFanAcrossAPanelIsNotMade) {
+  // 0 a0, 1 a1, 2 w (the first column); 3 b0, 4 b1, 5 w2 (the second); 6 t on the stem, 7 s the
+  // stem's corner with the waterline.
+  SurfaceMesh mesh;
+  mesh.positions = {{0, 0.2, 0}, {0, 1, 0},   {0, 2, 0},       {1, 0.2, 0},
+                    {1, 1, 0},   {0.1, 2, 0}, {-0.02, 0.3, 0}, {-0.6, 2, 0}};
+  mesh.faces = {{0, 3, 4, 1}, {1, 4, 5, 2}, {1, 2, 6, kInvalid}, {6, 2, 7, kInvalid}};
+  mesh.face_block.assign(mesh.faces.size(), 0);
+  std::vector<NodeSlot> slots(mesh.positions.size());
+  for (Index v = 0; v < 6; ++v) {
+    slots[v].row = v / 3;
+    slots[v].s = v % 3;
+  }
+  const std::vector<std::array<Index, 2>> knuckles{{4, 5}};
+  ASSERT_EQ(quads_breaking_side_rule(mesh), 1u);
+  {
+    std::vector<Face> faces = mesh.faces;
+    std::vector<Vec3d> positions = mesh.positions;
+    EditableFaces m(faces, positions);
+    const std::set<Index> core{1, 2, 3}, judged{0, 1, 2, 3};
+    EXPECT_EQ(m.crossings(core, judged, 1e-9), 0u);
+    const EditableFaces::Score before = m.score(core, judged);
+    m.merge_node(2, 5);
+    EXPECT_TRUE(m.score(core, judged).better_than(before));  // by the rules alone, a gain
+    EXPECT_EQ(m.crossings(core, judged, 1e-9), 1u);          // the fan's second over the quad
+    EXPECT_TRUE(node_freedom(slots, knuckles, mesh).may_merge(2, 5, slots));
+  }
+  EXPECT_EQ(collapse_wedges(slots, knuckles, 0.35, mesh), 0u);
+  EXPECT_EQ(quads_breaking_side_rule(mesh), 1u);
 }
 
 }  // namespace
