@@ -27,6 +27,7 @@
 #include <map>
 #include <set>
 
+#include "core/bbox.h"
 #include "mesh/adjacency.h"
 #include "query/hull_query.h"
 #include "structured/editable_faces.h"
@@ -98,6 +99,11 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
   const std::size_t nv = mesh.vertex_count();
   const NodeFreedom freedom = node_freedom(slots, knuckle_edges, mesh);
   const std::vector<std::uint8_t>& movable = freedom.movable;
+  // Crossings shallower than this are rounding (as the quality report counts them).
+  BBox3d box;
+  for (const Vec3d& p : mesh.positions) box.add(p);
+  const Vec3d extent = box.extent();
+  const double cross_tol = kCrossingShare * std::max({extent.x, extent.y, extent.z});
   EditableFaces m(mesh.faces, mesh.positions);
   const Index nf = static_cast<Index>(mesh.faces.size());
   std::vector<std::uint8_t> merged(nv, 0), done(nf, 0);
@@ -254,13 +260,25 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
       // score 1: the inner nodes merge into their border partners.
       std::map<Index, Face> was;
       for (Index g : scored) was[g] = m.face(g);
+      // The faces beside the scored ones, which merged nodes may drag panels across.
+      std::set<Index> near;
+      for (Index g : scored) {
+        const Face& h = m.face(g);
+        for (int c = 0; c < corner_count(h); ++c)
+          near.insert(m.around(h[c]).begin(), m.around(h[c]).end());
+      }
+      const std::size_t crossed = m.crossings(scored, near, cross_tol);
       for (const auto& [i, bf] : inner) {
         if (mergeable(i, bf.first)) m.merge_node(i, bf.first);
       }
       EditableFaces::Score s1{std::numeric_limits<std::size_t>::max(), 0};
       // A removal that folds the surface over (a merged node's panels lying across the next
       // row's, at a flared stem: property seed 1203) would make panels pass through each other.
-      if (m.manifold(scored) && (folded_before || !folds(m, scored))) s1 = m.score(scored);
+      // Nor may it drag panels across others that share no corner with them (ship_449 at 15 m,
+      // --trim 3 and 6,000 panels).
+      if (m.manifold(scored) && (folded_before || !folds(m, scored)) &&
+          m.crossings(scored, near, cross_tol) <= crossed)
+        s1 = m.score(scored);
       for (const auto& [g, h] : was) m.set_face(g, h);
       if (s1.better_than(best)) {
         best = s1;

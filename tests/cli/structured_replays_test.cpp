@@ -105,6 +105,17 @@ void expect_one_sound_border(const std::filesystem::path& hull, const std::strin
   }
 }
 
+// ship_449_patches.iges at 15 m trimmed 3 degrees by the stern, 6,000 panels, with the stations
+// of the side-rule step: by the immersed transom's edge (x = 86.7 m), a border-panel removal
+// merged a row's nodes into the bridge along the edge and dragged a panel through another that
+// shares no corner with it (1 pair). A merge may no longer leave more pairs through each other
+// than there were around it.
+TEST(CliStructured, ABorderRepairDragsNoPanelThroughAnother) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  expect_one_sound_border(ship, "cli_structured_ship449_repair_crossing",
+                          {"--auto-blocks --panels 6000 --draft 15 --trim 3"});
+}
+
 // A generated chine hull trimmed by the bow: its flat transom leans, spanning 0.09 m of x at 1
 // degree and 0.19 m at 2, and the first station, a fifth of a panel in from the hull's aft end,
 // cut it. That row lay across the transom, and the strip to the next station's row was zipped
