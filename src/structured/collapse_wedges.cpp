@@ -9,13 +9,12 @@
 //
 // collect (wedges, in face order) -> score (each of the two merges against the panels as they
 // stand; a merge that leaves a face flat, three corners on a line, or drags panels through
-// others, is not one) -> apply the
-// better, when it leaves fewer panels failing a rule nearby, or as many and a milder worst ->
-// drop the removed faces. Serial and in face order, so deterministic.
+// others, is not one) -> apply the better, when it leaves fewer panels failing a rule nearby, or
+// as many and a milder worst -> drop the removed faces. Serial and in face order, so
+// deterministic.
 #include <algorithm>
 #include <set>
 
-#include "core/bbox.h"
 #include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
 
@@ -42,11 +41,7 @@ std::size_t collapse_wedges(std::span<const NodeSlot> slots,
                             std::span<const std::array<Index, 2>> knuckle_edges,
                             double min_opposite_ratio, SurfaceMesh& mesh) {
   const NodeFreedom freedom = node_freedom(slots, knuckle_edges, mesh);
-  // Crossings shallower than this are rounding (as the quality report counts them).
-  BBox3d box;
-  for (const Vec3d& p : mesh.positions) box.add(p);
-  const Vec3d extent = box.extent();
-  const double cross_tol = kCrossingShare * std::max({extent.x, extent.y, extent.z});
+  const double cross_tol = crossing_tolerance(mesh.positions);
   EditableFaces m(mesh.faces, mesh.positions);
   std::vector<std::uint8_t> merged(mesh.vertex_count(), 0);
   std::size_t collapsed = 0;

@@ -27,7 +27,6 @@
 #include <map>
 #include <set>
 
-#include "core/bbox.h"
 #include "mesh/adjacency.h"
 #include "query/hull_query.h"
 #include "structured/editable_faces.h"
@@ -99,11 +98,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
   const std::size_t nv = mesh.vertex_count();
   const NodeFreedom freedom = node_freedom(slots, knuckle_edges, mesh);
   const std::vector<std::uint8_t>& movable = freedom.movable;
-  // Crossings shallower than this are rounding (as the quality report counts them).
-  BBox3d box;
-  for (const Vec3d& p : mesh.positions) box.add(p);
-  const Vec3d extent = box.extent();
-  const double cross_tol = kCrossingShare * std::max({extent.x, extent.y, extent.z});
+  const double cross_tol = crossing_tolerance(mesh.positions);
   EditableFaces m(mesh.faces, mesh.positions);
   const Index nf = static_cast<Index>(mesh.faces.size());
   std::vector<std::uint8_t> merged(nv, 0), done(nf, 0);
