@@ -7,7 +7,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/bbox.h"
 #include "core/error.h"
 
 namespace hm::cli {
@@ -49,10 +48,7 @@ std::string describe_patch(std::span<const Patch> patches, PatchId p) {
 }  // namespace
 
 SelfIntersections measure_crossings(const SurfaceMesh& mesh) {
-  BBox3d box;
-  for (const Vec3d& p : mesh.positions) box.add(p);
-  const Vec3d e = box.extent();
-  return find_self_intersections(mesh, 1e-7 * std::max({e.x, e.y, e.z}), 1);
+  return find_self_intersections(mesh, crossing_tolerance(mesh.positions), 1);
 }
 
 std::string describe_crossings(const std::string& file, std::span<const Patch> patches,

@@ -153,6 +153,13 @@ bool share_a_vertex(const Face& f, const Face& g) {
 
 }  // namespace
 
+double crossing_tolerance(std::span<const Vec3d> positions) {
+  BBox3d box;
+  for (const Vec3d& p : positions) box.add(p);
+  const Vec3d e = box.extent();
+  return 1e-7 * std::max({e.x, e.y, e.z});
+}
+
 bool faces_cross(std::span<const Vec3d> positions, const Face& a, const Face& b, double tol) {
   if (share_a_vertex(a, b)) return false;
   // A local frame at a's first corner, as the whole-mesh search centres its box.

@@ -38,6 +38,10 @@ struct SelfIntersections {
 SelfIntersections find_self_intersections(const SurfaceMesh& mesh, double tol,
                                           std::size_t max_listed = 16);
 
+// The depth (m) below which two faces crossing only round off: 1e-7 of the points' largest extent.
+// Every count of crossings (the merge's, the quality report's, the structured repairs') uses it.
+double crossing_tolerance(std::span<const Vec3d> positions);
+
 // Whether faces a and b cross by that rule (false when they share a vertex): for a few faces
 // under a local edit, where a whole-mesh search would not pay.
 bool faces_cross(std::span<const Vec3d> positions, const Face& a, const Face& b, double tol);

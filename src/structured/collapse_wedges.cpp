@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <set>
 
+#include "query/find_self_intersections.h"
 #include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
 

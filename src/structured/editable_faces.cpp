@@ -6,7 +6,6 @@
 #include <limits>
 #include <numbers>
 
-#include "core/bbox.h"
 #include "mesh/adjacency.h"
 #include "query/find_self_intersections.h"
 
@@ -16,8 +15,6 @@ namespace {
 // A boundary node may merge along the boundary only where it turns by less than this (degrees):
 // elsewhere it is a corner of the hull's outline.
 constexpr double kStraightDeg = 20;
-// Faces crossing by less than this share of the mesh's largest extent only round off.
-constexpr double kCrossingShare = 1e-7;
 
 }  // namespace
 
@@ -154,13 +151,6 @@ Face renamed(const Face& h, Index from, Index to) {
   if (n == 4) return {c[0], c[1], c[2], c[3]};
   if (n == 3) return {c[0], c[1], c[2], kInvalid};
   return {kInvalid, kInvalid, kInvalid, kInvalid};
-}
-
-double crossing_tolerance(std::span<const Vec3d> positions) {
-  BBox3d box;
-  for (const Vec3d& p : positions) box.add(p);
-  const Vec3d extent = box.extent();
-  return kCrossingShare * std::max({extent.x, extent.y, extent.z});
 }
 
 std::size_t EditableFaces::crossings(const std::set<Index>& core, const std::set<Index>& near,

@@ -20,9 +20,6 @@ namespace hm::structured {
 // A panel is distorted past these (the rules themselves; the scores use kSideTarget and
 // kAreaTarget, a little inside them).
 inline constexpr double kSideLimit = 4, kAreaLimit = 2;
-// The depth (m) below which two faces crossing only round off: 1e-7 of the mesh's largest extent,
-// as the quality report counts crossings.
-double crossing_tolerance(std::span<const Vec3d> positions);
 
 // The mesh as the repairs change it: faces (kInvalid in slot 0: removed), vertex -> faces, and
 // positions. Small local edits; queries read it as it stands.

@@ -76,38 +76,46 @@ std::vector<Sample> sample_sections(const HullQuery& query, double x0, double x1
   return samples;
 }
 
-// A node's walk from one sample to the next, at each of a's points: its x advance per walked
-// (metric) length, and how fast it turns on to sample c (radians per m of x; 0 without c).
+// A node's walk from one sample to the next, at each of a's points p: its x advance per walked
+// (metric) length, and q, where it reaches the next sample. `on` is the sample after that (null at
+// the ends), onto which the walk's turn is measured when a step asks for it.
 struct Walk {
   struct Point {
-    double advance = 0, turn = 0;
+    double advance = 0;
+    Vec3d p, q;
   };
   std::vector<Point> points;
+  const Sample* on = nullptr;
+  double dx = 0;
 };
 
 Walk walk(const Sample& a, const Sample& b, const Sample* c, const Metric& metric) {
   Walk w;
-  const double dx = std::abs(b.x - a.x);
+  w.dx = std::abs(b.x - a.x);
+  w.on = c != nullptr && !c->empty() ? c : nullptr;
   for (const Vec3d& p : a.points) {
     const Vec3d q = b.grid.nearest(p);
     const double best = metric.length(p, q);
-    if (!(best > 0 && std::isfinite(best))) continue;
-    double turn = 0;
-    if (c != nullptr && !c->empty()) {
-      const Vec3d d1 = q - p, d2 = c->grid.nearest(q) - q;
-      const double n1 = norm(d1), n2 = norm(d2);
-      if (n1 > 0 && n2 > 0) turn = std::acos(std::clamp(dot(d1, d2) / (n1 * n2), -1.0, 1.0)) / dx;
-    }
-    w.points.push_back({dx / best, turn});
+    if (best > 0 && std::isfinite(best)) w.points.push_back({w.dx / best, p, q});
   }
   return w;
+}
+
+// How fast the walk from point t turns on to the sample after (radians per m of x; 0 at the
+// ends).
+double turn(const Walk& w, const Walk::Point& t) {
+  if (w.on == nullptr) return 0;
+  const Vec3d d1 = t.q - t.p, d2 = w.on->grid.nearest(t.q) - t.q;
+  const double n1 = norm(d1), n2 = norm(d2);
+  if (!(n1 > 0 && n2 > 0)) return 0;
+  return std::acos(std::clamp(dot(d1, d2) / (n1 * n2), -1.0, 1.0)) / w.dx;
 }
 
 // The station step (m of x per panel) the walks both ways allow; infinite where no point walks.
 // A step of the least advance makes the most transverse point's panels square. Where the section
 // is also longitudinal, that leaves the rest of it a strip of thin quads, so the step grows to
 // kThinShare of the largest advance, unless a point whose panels it makes longer than square
-// turns by more than kMaxTurnDeg along one.
+// turns by more than kMaxTurnDeg along one (only those points' turns are measured).
 double longest_step(const Walk& fore, const Walk& back) {
   double least = std::numeric_limits<double>::infinity(), most = 0;
   for (const Walk* w : {&fore, &back}) {
@@ -120,8 +128,9 @@ double longest_step(const Walk& fore, const Walk& back) {
   double wide = kThinShare * most;
   for (const Walk* w : {&fore, &back}) {
     for (const Walk::Point& p : w->points) {
-      if (p.advance < wide && p.turn > 0)
-        wide = std::min(wide, kMaxTurnDeg * std::numbers::pi / 180 / p.turn);
+      if (!(p.advance < wide)) continue;
+      const double t = turn(*w, p);
+      if (t > 0) wide = std::min(wide, kMaxTurnDeg * std::numbers::pi / 180 / t);
     }
   }
   return std::max(least, wide);

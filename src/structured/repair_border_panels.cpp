@@ -28,6 +28,7 @@
 #include <set>
 
 #include "mesh/adjacency.h"
+#include "query/find_self_intersections.h"
 #include "query/hull_query.h"
 #include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
