@@ -1,15 +1,12 @@
 // Station planning: where the rows go. A node that walks one panel size along the hull, normal to
 // its row, must reach the next station, so stations crowd where the hull turns away from x (the
-// stem, a bulb, a sonar dome, the forefoot) and keep the panel length x elsewhere. Where a section
-// is transverse in part only, they crowd no more than keeps the rest of it within the side rule,
-// while the longer panels that leaves on the transverse part turn by little (longest_step).
-// Sampled sections estimate that walk; stations are then placed by equidistribution between the
-// border stations (the ends and the cut stations), which are fixed first.
+// stem, a bulb, a sonar dome, the forefoot) and keep the panel length x elsewhere. Sampled
+// sections estimate that walk; stations are then placed by equidistribution between the border
+// stations (the ends and the cut stations), which are fixed first.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "core/bbox.h"
 #include "core/error.h"
@@ -27,12 +24,6 @@ constexpr std::size_t kWalkPoints = 48;
 constexpr double kMinStepShare = 0.2;
 // Automatic cuts make blocks at least this many panel lengths long.
 constexpr double kMinBlockPanels = 3;
-// A step never makes the most longitudinal part of a section thinner than this share of a panel
-// (about 1 / 3.5: under the side rule's 4, with a margin) ...
-constexpr double kThinShare = 0.286;
-// ... unless panels elsewhere on the section would then turn by more than this along their length
-// (degrees: the neighbour-normal rule's bound), leaving the hull.
-constexpr double kMaxTurnDeg = 15;
 // How fast the station spacing may grow along x (m per m).
 constexpr double kGrading = 0.3;
 // A cut station taken from a vertex's x sits this far (relative to L) beside it.
@@ -76,64 +67,16 @@ std::vector<Sample> sample_sections(const HullQuery& query, double x0, double x1
   return samples;
 }
 
-// A node's walk from one sample to the next, at each of a's points p: its x advance per walked
-// (metric) length, and q, where it reaches the next sample. `on` is the sample after that (null at
-// the ends), onto which the walk's turn is measured when a step asks for it.
-struct Walk {
-  struct Point {
-    double advance = 0;
-    Vec3d p, q;
-  };
-  std::vector<Point> points;
-  const Sample* on = nullptr;
-  double dx = 0;
-};
-
-Walk walk(const Sample& a, const Sample& b, const Sample* c, const Metric& metric) {
-  Walk w;
-  w.dx = std::abs(b.x - a.x);
-  w.on = c != nullptr && !c->empty() ? c : nullptr;
+// How far in x a node of sample a gets when it walks one panel size towards sample b: the
+// smallest ratio of x advance to walked (metric) length over a's points.
+double walk_step(const Sample& a, const Sample& b, const Metric& metric) {
+  double step = std::numeric_limits<double>::infinity();
+  const double dx = std::abs(b.x - a.x);
   for (const Vec3d& p : a.points) {
-    const Vec3d q = b.grid.nearest(p);
-    const double best = metric.length(p, q);
-    if (best > 0 && std::isfinite(best)) w.points.push_back({w.dx / best, p, q});
+    const double best = metric.length(p, b.grid.nearest(p));
+    if (best > 0 && std::isfinite(best)) step = std::min(step, dx / best);
   }
-  return w;
-}
-
-// How fast the walk from point t turns on to the sample after (radians per m of x; 0 at the
-// ends).
-double turn(const Walk& w, const Walk::Point& t) {
-  if (w.on == nullptr) return 0;
-  const Vec3d d1 = t.q - t.p, d2 = w.on->grid.nearest(t.q) - t.q;
-  const double n1 = norm(d1), n2 = norm(d2);
-  if (!(n1 > 0 && n2 > 0)) return 0;
-  return std::acos(std::clamp(dot(d1, d2) / (n1 * n2), -1.0, 1.0)) / w.dx;
-}
-
-// The station step (m of x per panel) the walks both ways allow; infinite where no point walks.
-// A step of the least advance makes the most transverse point's panels square. Where the section
-// is also longitudinal, that leaves the rest of it a strip of thin quads, so the step grows to
-// kThinShare of the largest advance, unless a point whose panels it makes longer than square
-// turns by more than kMaxTurnDeg along one (only those points' turns are measured).
-double longest_step(const Walk& fore, const Walk& back) {
-  double least = std::numeric_limits<double>::infinity(), most = 0;
-  for (const Walk* w : {&fore, &back}) {
-    for (const Walk::Point& p : w->points) {
-      least = std::min(least, p.advance);
-      most = std::max(most, p.advance);
-    }
-  }
-  if (!std::isfinite(least)) return least;
-  double wide = kThinShare * most;
-  for (const Walk* w : {&fore, &back}) {
-    for (const Walk::Point& p : w->points) {
-      if (!(p.advance < wide)) continue;
-      const double t = turn(*w, p);
-      if (t > 0) wide = std::min(wide, kMaxTurnDeg * std::numbers::pi / 180 / t);
-    }
-  }
-  return std::max(least, wide);
+  return step;
 }
 
 // The largest lateral move of a's points to b's, per metre of x: near zero in the parallel
@@ -258,11 +201,8 @@ StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
       first, last - 1,
       [&](std::size_t k) {
         const double size_x = metric.size_at(samples[k].points.front()).x;
-        const Sample* after = k + 2 < last ? &samples[k + 2] : nullptr;
-        const Walk fore = walk(samples[k], samples[k + 1], after, metric);
-        const Walk back =
-            walk(samples[k + 1], samples[k], k > first ? &samples[k - 1] : nullptr, metric);
-        const double w = longest_step(fore, back);
+        const double w = std::min(walk_step(samples[k], samples[k + 1], metric),
+                                  walk_step(samples[k + 1], samples[k], metric));
         step[k] = std::clamp(std::isfinite(w) ? w : size_x, kMinStepShare * size_x, size_x);
       },
       4, 16);

@@ -28,7 +28,6 @@
 #include <set>
 
 #include "mesh/adjacency.h"
-#include "query/find_self_intersections.h"
 #include "query/hull_query.h"
 #include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
@@ -99,7 +98,6 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
   const std::size_t nv = mesh.vertex_count();
   const NodeFreedom freedom = node_freedom(slots, knuckle_edges, mesh);
   const std::vector<std::uint8_t>& movable = freedom.movable;
-  const double cross_tol = crossing_tolerance(mesh.positions);
   EditableFaces m(mesh.faces, mesh.positions);
   const Index nf = static_cast<Index>(mesh.faces.size());
   std::vector<std::uint8_t> merged(nv, 0), done(nf, 0);
@@ -256,25 +254,13 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
       // score 1: the inner nodes merge into their border partners.
       std::map<Index, Face> was;
       for (Index g : scored) was[g] = m.face(g);
-      // The faces beside the scored ones, which merged nodes may drag panels across.
-      std::set<Index> near;
-      for (Index g : scored) {
-        const Face& h = m.face(g);
-        for (int c = 0; c < corner_count(h); ++c)
-          near.insert(m.around(h[c]).begin(), m.around(h[c]).end());
-      }
-      const std::size_t crossed = m.crossings(scored, near, cross_tol);
       for (const auto& [i, bf] : inner) {
         if (mergeable(i, bf.first)) m.merge_node(i, bf.first);
       }
       EditableFaces::Score s1{std::numeric_limits<std::size_t>::max(), 0};
       // A removal that folds the surface over (a merged node's panels lying across the next
       // row's, at a flared stem: property seed 1203) would make panels pass through each other.
-      // Nor may it drag panels across others that share no corner with them (ship_449 at 15 m,
-      // --trim 3 and 6,000 panels).
-      if (m.manifold(scored) && (folded_before || !folds(m, scored)) &&
-          m.crossings(scored, near, cross_tol) <= crossed)
-        s1 = m.score(scored);
+      if (m.manifold(scored) && (folded_before || !folds(m, scored))) s1 = m.score(scored);
       for (const auto& [g, h] : was) m.set_face(g, h);
       if (s1.better_than(best)) {
         best = s1;
