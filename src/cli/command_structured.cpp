@@ -221,6 +221,8 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
       std::printf(
           "  pairs of triangles folded onto each other, flipped to the other diagonal: %zu\n",
           r.folds_flipped);
+    if (r.triangles_paired > 0)
+      std::printf("  pairs of triangles side by side made one quad: %zu\n", r.triangles_paired);
     if (r.edge_snaps > 0)
       std::printf(
           "  %zu border and knuckle nodes moved onto their patch edge curves (exact NURBS)\n",

@@ -269,6 +269,7 @@ void join_reports(StructuredReport& port, const StructuredReport& stbd) {
   port.wedges_collapsed += stbd.wedges_collapsed;
   port.non_convex_split += stbd.non_convex_split;
   port.folds_flipped += stbd.folds_flipped;
+  port.triangles_paired += stbd.triangles_paired;
   port.size_passes = std::max(port.size_passes, stbd.size_passes);
   port.first_pass_faces += stbd.first_pass_faces;
   port.seconds_plan += stbd.seconds_plan;

@@ -203,6 +203,7 @@ StructuredMesh mesh_with(std::span<const Patch> patches, const SurfaceMesh& surf
   }
   rep.non_convex_split = split_non_convex(mesh);
   rep.folds_flipped = unfold_triangles(out.knuckle_edges, mesh);
+  if (options.pair_triangles) rep.triangles_paired = pair_triangles(out.knuckle_edges, zo, mesh);
 
   drop_unused_vertices(out);
   // The blocks' panel counts, as the repairs left them (a block's id is its place in the list).

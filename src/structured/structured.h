@@ -67,6 +67,8 @@ struct StructuredOptions {
   // The paper's three border-panel repairs, chosen per run of distorted border panels by quality,
   // and the collapse of wedge quads into triangles (both only where they mend rule failures).
   bool repair_border_panels = true;
+  // Pairs of triangles side by side that make a good quad become it (pair_triangles).
+  bool pair_triangles = true;
   // With the sizes from target_panels: mesh again, the sizes scaled by sqrt(count / target),
   // until the count is within kMatchTolerance of the target (at most kMatchPasses in all). The
   // rows add panels where they turn, so one pass overshoots by 0-40%.
@@ -109,6 +111,7 @@ struct StructuredReport {
   std::size_t wedges_collapsed = 0;  // wedge quads made triangles by merging a short side's ends
   std::size_t non_convex_split = 0;  // quads left non-convex, split along the reflex diagonal
   std::size_t folds_flipped = 0;     // pairs of triangles folded onto each other, flipped
+  std::size_t triangles_paired = 0;  // pairs of triangles side by side made one quad
   std::size_t size_passes = 1;       // meshing passes (more than one with match_panels)
   std::size_t first_pass_faces = 0;  // the first pass's panel count
   std::vector<BlockReport> blocks;

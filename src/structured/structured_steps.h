@@ -123,6 +123,11 @@ struct ZipCounts {
 ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::span<const Index> b,
                      std::span<const double> fb, std::span<const Vec3d> positions,
                      const ZipOptions& options, std::vector<Face>& faces);
+// The zip's quad tests on corners a, b, c, d in order: the corner distance from the best plane
+// over the mean diagonal (the warp the quality report uses), and the smaller of the two ratios
+// of opposite sides (shorter over longer).
+double quad_warp(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
+double opposite_ratio(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
 
 // --- nodes -------------------------------------------------------------------------------
 // Where each vertex came from: its row, curve and arc length (row kInvalid for boundary nodes
@@ -190,6 +195,15 @@ std::size_t split_non_convex(SurfaceMesh& mesh);
 // flipped.
 std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
                              SurfaceMesh& mesh);
+
+// Two triangles side by side that make a good quad become that quad (Gmsh's recombination, on
+// what the zips, caps and repairs left): same block, their shared side off every knuckle, the
+// quad convex and passing the zip's tests (options) and the side rule, and no more panels failing
+// a rule nearby. Best quads first (by side ratio, then face order); nothing moves. Serial, so
+// deterministic. The quad takes the first triangle's place; the second is dropped. Returns the
+// pairs made quads.
+std::size_t pair_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
+                           const ZipOptions& options, SurfaceMesh& mesh);
 
 // Boundary compliance on the exact curves: every node on the panel mesh's open border or on a
 // knuckle edge that lies on a fine boundary or knuckle segment running along an edge of a

@@ -11,17 +11,6 @@
 namespace hm::structured {
 namespace {
 
-// Corner distance from the best plane over the mean diagonal (the warp the quality report uses).
-double warp(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
-  const Vec3d n = cross(c - a, d - b);
-  const double nn = norm(n);
-  const double diag = 0.5 * (norm(c - a) + norm(d - b));
-  if (nn == 0 || diag == 0) return 1;
-  const Vec3d m = (a + b + c + d) * 0.25;
-  const double h = std::abs(dot(n, a - m)) / nn;  // the four corners are equally far
-  return h / diag;
-}
-
 double ratio(double p, double q) {
   const double hi = std::max(p, q);
   return hi > 0 ? std::min(p, q) / hi : 0;
@@ -34,6 +23,20 @@ void push_triangle(Index a, Index b, Index c, std::vector<Face>& faces, ZipCount
 }
 
 }  // namespace
+
+double quad_warp(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  const Vec3d n = cross(c - a, d - b);
+  const double nn = norm(n);
+  const double diag = 0.5 * (norm(c - a) + norm(d - b));
+  if (nn == 0 || diag == 0) return 1;
+  const Vec3d m = (a + b + c + d) * 0.25;
+  const double h = std::abs(dot(n, a - m)) / nn;  // the four corners are equally far
+  return h / diag;
+}
+
+double opposite_ratio(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  return std::min(ratio(norm(b - a), norm(c - d)), ratio(norm(d - a), norm(c - b)));
+}
 
 ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::span<const Index> b,
                      std::span<const double> fb, std::span<const Vec3d> positions,
@@ -61,9 +64,8 @@ ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::
       } else {
         const Vec3d &p0 = positions[q0], &p1 = positions[q1], &p2 = positions[q2],
                     &p3 = positions[q3];
-        const double opposite =
-            std::min(ratio(norm(p1 - p0), norm(p2 - p3)), ratio(norm(p3 - p0), norm(p2 - p1)));
-        if (opposite < options.min_opposite_ratio || warp(p0, p1, p2, p3) > options.max_warp) {
+        if (opposite_ratio(p0, p1, p2, p3) < options.min_opposite_ratio ||
+            quad_warp(p0, p1, p2, p3) > options.max_warp) {
           ++n.split;
           if (squared_norm(p2 - p0) <= squared_norm(p3 - p1)) {
             push_triangle(q0, q1, q2, faces, n);

@@ -75,6 +75,32 @@ TEST(Structured, WigleyIsClosedMostlyQuadsAndMeetsTheSideRatioRule) {
   }
 }
 
+// Triangles side by side that make a good quad become it: more quads, each pair two triangles
+// fewer, and no rule share lower than without the pairing.
+TEST(Structured, TrianglePairsBecomeQuadsAndNoRuleGetsWorse) {
+  const auto w = wetted(HullKind::kWigley, 6);
+  StructuredOptions o;
+  o.target_panels = 800;
+  o.pair_triangles = false;
+  const StructuredMesh off = mesh(*w, o);
+  o.pair_triangles = true;
+  const StructuredMesh on = mesh(*w, o);
+  const QualityReport qoff = quality(off, 6.25), qon = quality(on, 6.25);
+  const std::size_t paired = on.report.triangles_paired;
+  EXPECT_GT(paired, 0u);
+  EXPECT_EQ(off.report.triangles_paired, 0u);
+  EXPECT_EQ(qon.quads, qoff.quads + paired);
+  EXPECT_EQ(qon.faces + paired, qoff.faces);
+  // The side rule's share is of quads: no more quads fail it.
+  EXPECT_LE(std::lround((1 - qon.side_ratio_share) * double(qon.quads)),
+            std::lround((1 - qoff.side_ratio_share) * double(qoff.quads)));
+  EXPECT_GE(qon.area_ratio_share, qoff.area_ratio_share - 1e-12);
+  EXPECT_EQ(qon.topology.nonmanifold_edges, 0u);
+  EXPECT_EQ(qon.topology.free_edges_below, 0u);
+  EXPECT_TRUE(qon.topology.orientation_consistent);
+  EXPECT_LE(qon.max_warp, std::max(qoff.max_warp, 0.08) + 1e-12);
+}
+
 TEST(Structured, RowNodesLieOnStationPlanesAndOnTheNurbs) {
   const auto w = wetted(HullKind::kWigley, 4);
   StructuredOptions o;
