@@ -6,13 +6,14 @@
 // collect (each pair of triangles sharing a side: same block, off every knuckle, consistently
 // oriented) -> score (the quad they make: convex, within the zip's warp and opposite-side tests
 // and the side rule) -> select (best side ratio first, then face order) -> apply (when no more
-// panels fail a rule among the pair and the faces beside it, and the worst is no worse) -> drop
-// the second triangles. Nothing moves. Serial, so deterministic.
+// panels fail a rule among the pair and the faces beside it, the worst is no worse, and no more
+// pairs of panels pass through each other nearby) -> drop the second triangles. Nothing moves.
+// Serial, so deterministic.
 #include <algorithm>
 #include <set>
 #include <tuple>
 
-#include "mesh/adjacency.h"
+#include "query/find_self_intersections.h"
 #include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
 
@@ -52,6 +53,7 @@ std::size_t pair_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
   std::set<std::pair<Index, Index>> knuckle;
   for (const std::array<Index, 2>& k : knuckle_edges)
     knuckle.insert({std::min(k[0], k[1]), std::max(k[0], k[1])});
+  const double cross_tol = crossing_tolerance(mesh.positions);
   EditableFaces m(mesh.faces, mesh.positions);
   const Index nf = static_cast<Index>(mesh.faces.size());
 
@@ -100,11 +102,26 @@ std::size_t pair_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
     std::set<Index> judged{cand.first, cand.second};
     for (Index v : cand.quad)
       for (Index g : m.around(v)) judged.insert(g);
+    // Crossings are looked for one ring further, on the quad's other split too (x-w; the mesh's
+    // own split, u-v, is the pair's): where the hull is a few centimetres thick (a Wigley's
+    // trimmed end), that diagonal may pass through the panels beyond.
+    std::set<Index> near = judged;
+    for (Index g : judged) {
+      const Face& h = m.face(g);
+      for (int c = 0; c < corner_count(h); ++c) {
+        near.insert(m.around(h[c]).begin(), m.around(h[c]).end());
+      }
+    }
     const EditableFaces::Score before = m.score({cand.first, cand.second}, judged);
+    const std::size_t crossed = m.crossings({cand.first, cand.second}, near, cross_tol);
     m.set_face(cand.second, {kInvalid, kInvalid, kInvalid, kInvalid});
     m.set_face(cand.first, cand.quad);
     const EditableFaces::Score after = m.score({cand.first}, judged);
-    if (before.better_than(after) || !m.manifold({cand.first})) {
+    const Face& q = cand.quad;
+    m.set_face(cand.first, {q[1], q[2], q[3], q[0]});
+    const std::size_t crossed_after = m.crossings({cand.first}, near, cross_tol);
+    m.set_face(cand.first, q);
+    if (before.better_than(after) || !m.manifold({cand.first}) || crossed_after > crossed) {
       m.set_face(cand.first, before_first);
       m.set_face(cand.second, before_second);
       continue;

@@ -198,8 +198,9 @@ std::size_t unfold_triangles(std::span<const std::array<Index, 2>> knuckle_edges
 
 // Two triangles side by side that make a good quad become that quad (Gmsh's recombination, on
 // what the zips, caps and repairs left): same block, their shared side off every knuckle, the
-// quad convex and passing the zip's tests (options) and the side rule, and no more panels failing
-// a rule nearby. Best quads first (by side ratio, then face order); nothing moves. Serial, so
+// quad convex with a margin and passing the zip's tests (options) and the side rule, no more
+// panels failing a rule nearby, and no more panels crossing nearby on either of the quad's
+// splits. Best quads first (by side ratio, then face order); nothing moves. Serial, so
 // deterministic. The quad takes the first triangle's place; the second is dropped. Returns the
 // pairs made quads.
 std::size_t pair_triangles(std::span<const std::array<Index, 2>> knuckle_edges,

@@ -103,5 +103,36 @@ TEST(PairTriangles, KnucklesBlocksReflexAndFoldedPairsStay) {
   }
 }
 
+// A pair lifted at its outer corners (warp 0.07): its own split runs low along u-v, the quad's
+// other split high along x-w. A small upright panel at the middle, tied to the mesh by a bridge
+// panel from w, stands between the two: made a quad, the pair would pass through it on one of its
+// splits, so it stays; lowered under both, it pairs.
+TEST(PairTriangles, APairWhoseOtherSplitWouldPassThroughAPanelStays) {
+  auto mesh = [](double lift) {
+    const double h = 0.2;
+    SurfaceMesh m;
+    m.positions = {{0, 0, 0},
+                   {1, 0, h},
+                   {1, 1, 0},
+                   {0, 1, h},
+                   {0.45, 0.5, 0.1 + lift},
+                   {0.55, 0.5, 0.1 + lift},
+                   {0.5, 0.5, 0.3 + lift},
+                   {-0.5, 1.5, h}};
+    m.faces = {{0, 2, 3, kInvalid},   // u v w
+               {2, 0, 1, kInvalid},   // v u x
+               {4, 5, 6, kInvalid},   // upright, at the middle
+               {3, 4, 7, kInvalid}};  // bridge from w
+    m.face_block.assign(4, 0);
+    return m;
+  };
+  SurfaceMesh standing = mesh(0);
+  EXPECT_EQ(pair_triangles({}, ZipOptions{}, standing), 0u);
+  EXPECT_EQ(standing.face_count(), 4u);
+  SurfaceMesh lowered = mesh(-0.45);
+  EXPECT_EQ(pair_triangles({}, ZipOptions{}, lowered), 1u);
+  EXPECT_EQ(lowered.face_count(), 3u);
+}
+
 }  // namespace
 }  // namespace hm::structured
