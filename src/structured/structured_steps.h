@@ -85,8 +85,26 @@ struct StationPlan {
   std::vector<std::uint8_t> border;  // 1 at cut stations and at both ends
   std::size_t cuts = 0;
 };
+// Where an open transom's edge turns back in x (DTMB 5415's runs forward from the keel to the
+// bilge, then aft to the deck): the interior vertex of a transom-edge run with its least (side
+// +1) or greatest (side -1) x, both branches running at least a fifth of the panel length hx
+// away from it. On the `side` of x, a station plane cuts the hull in two pieces.
+struct TransomTurn {
+  double x = 0;
+  int side = 1;
+};
+std::vector<TransomTurn> transom_turns(const SurfaceMesh& surface, const FeatureSet& features,
+                                       double hx);
+// Moves each station that is no border off the turns, to 0.4 of its spacing from each: a station
+// just on the split side cuts the hull with a sliver of a gap, whose ends' panels are a fraction
+// of the others' area (DTMB 5415, --panels 2000 --match-panels: a station 0.2 mm aft of the turn,
+// a 1 mm gap, 23 panels over the area rule round it); one just on the other side passes the
+// boundary's corner within a hair. A station moves by under its spacing, so the order stays.
+void keep_clear_of_turns(std::span<const TransomTurn> turns, StationPlan& plan);
+
 // Stations from the aft end to the forward end: spaced so that a node walking the panel size
-// along the hull, normal to its row, reaches the next station; cut stations included.
+// along the hull, normal to its row, reaches the next station; cut stations included. They keep
+// clear of the transom turns (keep_clear_of_turns).
 StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
                           const SurfaceMesh& surface, const Metric& metric,
                           const StructuredOptions& options);
