@@ -130,6 +130,21 @@ TEST(CliStructured, AnEndStationStaysClearOfALeaningTransom) {
   }
 }
 
+// A full round-bilge hull of 24 patches, bulb below a raked stem, at 6.684 m and --trim 0.63: the
+// end station, a fifth of a panel from the stem's tip, cut the bulb's nose and the stem's tip,
+// 0.21 and 0.11 panels long. The two stations before it had dropped their pieces of the stem, so
+// the strip aft of those had capped the stem to its tip, and the end cap covered the tip again,
+// back to back: 4 pairs of panels through each other. The end row now drops that piece too.
+TEST(CliStructured, AStemTipAtTheEndStationIsNotCappedTwice) {
+  const auto dir = test::scratch_dir("cli_structured_stem_tip");
+  const auto hull = dir / "round_bilge_24f.igs";
+  ASSERT_EQ(test::run_hullmesh("-q generate round-bilge --patches 24 --full -o " + test::q(hull))
+                .exit_code,
+            0);
+  expect_one_sound_border(hull, "cli_structured_stem_tip_out",
+                          {"--panels 1500 --draft 6.684 --trim 0.63"});
+}
+
 // kcs.iges draws its centre-plane edge 2.5e-6 m off y = 0. A row's end at the stern, one node
 // in the centre plane and one on the waterline, cut the corner between them, and the gap fill
 // took the centre plane for y == 0 exactly, so it saw no corner: a sliver 0.03 m by 0.014 m
