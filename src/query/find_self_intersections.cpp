@@ -164,17 +164,19 @@ bool faces_cross(std::span<const Vec3d> positions, const Face& a, const Face& b,
   if (share_a_vertex(a, b)) return false;
   // A local frame at a's first corner, as the whole-mesh search centres its box.
   const Vec3d o = positions[a[0]];
-  auto triangles = [&](const Face& f) {
-    std::vector<std::array<Vec3d, 3>> t{
-        {positions[f[0]] - o, positions[f[1]] - o, positions[f[2]] - o}};
-    if (!is_triangle(f))
-      t.push_back({positions[f[0]] - o, positions[f[2]] - o, positions[f[3]] - o});
-    return t;
+  // A face's triangles in that frame, (0, 1, 2) and for a quad (0, 2, 3); returns their count.
+  auto triangles = [&](const Face& f, std::array<std::array<Vec3d, 3>, 2>& t) {
+    t[0] = {positions[f[0]] - o, positions[f[1]] - o, positions[f[2]] - o};
+    if (is_triangle(f)) return 1;
+    t[1] = {positions[f[0]] - o, positions[f[2]] - o, positions[f[3]] - o};
+    return 2;
   };
+  std::array<std::array<Vec3d, 3>, 2> ta, tb;
+  const int na = triangles(a, ta), nb = triangles(b, tb);
   Vec3d where;
-  for (const auto& ta : triangles(a))
-    for (const auto& tb : triangles(b))
-      if (triangles_cross(ta, tb, tol, where)) return true;
+  for (int i = 0; i < na; ++i)
+    for (int j = 0; j < nb; ++j)
+      if (triangles_cross(ta[i], tb[j], tol, where)) return true;
   return false;
 }
 
