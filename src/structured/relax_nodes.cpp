@@ -8,7 +8,6 @@
 #include <limits>
 
 #include "core/parallel.h"
-#include "mesh/adjacency.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -101,12 +100,6 @@ void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span
   }
 }
 
-namespace {
-
-// Share of a node's gap to its row neighbours that one trial move spans.
-constexpr double kTrialSteps[] = {-0.3, -0.15, 0.15, 0.3};
-}  // namespace
-
 double side_ratio(std::span<const Vec3d> p, const Face& f) {
   const int n = corner_count(f);
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
@@ -124,99 +117,6 @@ bool flat_face(std::span<const Vec3d> p, const Face& f) {
   for (int c = 0; c < n; ++c)
     longest = std::max(longest, squared_norm(p[f[(c + 1) % n]] - p[f[c]]));
   return !(face_area(p, f) > kFlatArea * longest);
-}
-
-std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
-                          std::span<const Face> faces, std::vector<Vec3d>& positions, int passes) {
-  const std::size_t nv = positions.size(), nf = faces.size();
-  const EdgeAdjacency adj = build_edge_adjacency(faces, nv);
-  // Faces around each vertex (CSR).
-  std::vector<std::uint32_t> start(nv + 1, 0);
-  for (const Face& f : faces)
-    for (int c = 0; c < corner_count(f); ++c) ++start[f[c] + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<Index> around(start[nv]);
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t f = 0; f < nf; ++f)
-    for (int c = 0; c < corner_count(faces[f]); ++c)
-      around[fill[faces[f][c]]++] = static_cast<Index>(f);
-  std::vector<double> area(nf);
-  for (std::size_t f = 0; f < nf; ++f) area[f] = face_area(positions, faces[f]);
-  // The worst rule value, normalised by its limit, over the faces around v and their neighbours.
-  auto local = [&](std::size_t v) {
-    double worst = 0;
-    for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
-      const Index f = around[i];
-      if (!is_triangle(faces[f]))
-        worst = std::max(worst, side_ratio(positions, faces[f]) / kSideTarget);
-      for (int c = 0; c < corner_count(faces[f]); ++c) {
-        const Index g = adj.opposite_face[4 * f + c];
-        if (g == kInvalid) continue;
-        const double a = area[f], b = area[g];
-        const double r = std::min(a, b) > 0 ? std::max(a, b) / std::min(a, b)
-                                            : std::numeric_limits<double>::infinity();
-        worst = std::max(worst, r / kAreaTarget);
-      }
-    }
-    return worst;
-  };
-  auto set = [&](std::size_t v, double s) {
-    slots[v].s = s;
-    positions[v] = rows[slots[v].row].curves[slots[v].curve].at(s);
-    for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
-      area[around[i]] = face_area(positions, faces[around[i]]);
-  };
-  // A node is tried again only after something its trials read has moved: the corners of its
-  // faces and of their edge neighbours, and its row neighbours (the bounds of its steps). Trying
-  // it again before would give the same answer (it stays), so the passes are the same as trying
-  // every node every time.
-  std::vector<std::uint8_t> stale(nv, 1);
-  auto touch = [&](std::size_t u) {
-    stale[u - 1] = stale[u + 1] = 1;
-    for (std::uint32_t i = start[u]; i < start[u + 1]; ++i) {
-      const Index f = around[i];
-      for (int c = 0; c < corner_count(faces[f]); ++c) {
-        for (std::uint32_t j = start[faces[f][c]]; j < start[faces[f][c] + 1]; ++j) {
-          const Face& g = faces[around[j]];
-          for (int k = 0; k < corner_count(g); ++k) stale[g[k]] = 1;
-        }
-      }
-    }
-  };
-  std::size_t moves = 0;
-  for (int pass = 0; pass < passes; ++pass) {
-    std::size_t moved = 0;
-    for (std::size_t v = 0; v < nv; ++v) {
-      const NodeSlot& n = slots[v];
-      if (n.fixed || n.row == kInvalid || v == 0 || v + 1 >= nv || !stale[v]) continue;
-      stale[v] = 0;
-      const NodeSlot& a = slots[v - 1];
-      const NodeSlot& b = slots[v + 1];
-      // Its row neighbours are the vertices beside it (rows are numbered node by node).
-      if (a.row != n.row || a.curve != n.curve || b.row != n.row || b.curve != n.curve) continue;
-      const double s0 = n.s, before = local(v);
-      if (before <= 0.5) continue;  // already well inside every limit
-      double best = before, best_s = s0;
-      for (double t : kTrialSteps) {
-        const double s = s0 + t * (t < 0 ? s0 - a.s : b.s - s0);
-        if (!(s > a.s && s < b.s)) continue;
-        set(v, s);
-        const double q = local(v);
-        if (q < best - 1e-9) {
-          best = q;
-          best_s = s;
-        }
-      }
-      set(v, best_s);
-      if (best_s != s0) {
-        ++moved;
-        touch(v);
-      }
-    }
-    moves += moved;
-    if (moved == 0) break;
-  }
-  return moves;
 }
 
 }  // namespace hm::structured

@@ -15,8 +15,9 @@
 // A candidate is scored by the panels failing a rule among those it changes and the ones beside
 // them, then by the worst rule value, over its yardstick, of the panels it changes (as the
 // relocation scores a move); the best is kept when it beats the run as it stands, a split only
-// when fewer panels fail (it costs quads). Free nodes are row nodes off the border rows,
-// breakpoints, caps, knuckles and the boundary.
+// when fewer panels fail (it costs quads), and none that leaves more pairs of panels through each
+// other, among those it changes and one ring beyond, than there were. Free nodes are row nodes
+// off the border rows, breakpoints, caps, knuckles and the boundary.
 //
 // collect (a distorted border quad, in face order, and its run) -> score (every candidate against
 // the mesh as the earlier repairs left it) -> apply the best -> drop the removed faces. Serial
@@ -28,6 +29,7 @@
 #include <set>
 
 #include "mesh/adjacency.h"
+#include "query/find_self_intersections.h"
 #include "query/hull_query.h"
 #include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
@@ -99,6 +101,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
   const NodeFreedom freedom = node_freedom(slots, knuckle_edges, mesh);
   const std::vector<std::uint8_t>& movable = freedom.movable;
   EditableFaces m(mesh.faces, mesh.positions);
+  const double cross_tol = crossing_tolerance(mesh.positions);
   const Index nf = static_cast<Index>(mesh.faces.size());
   std::vector<std::uint8_t> merged(nv, 0), done(nf, 0);
 
@@ -178,6 +181,14 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
         for (Index g : m.around(v)) scored.insert(g);
     EditableFaces::Score best = m.score(scored);
     const bool folded_before = folds(m, scored);
+    // No repair may make panels pass through others one ring beyond the ones it changes: at a
+    // stem a few millimetres off the centre plane, a row's panels and a cap's fan over the same
+    // strip lie that close (DTMB 5415's sonar dome).
+    std::set<Index> near = scored;
+    for (Index g : scored)
+      for (int c = 0; c < corner_count(m.face(g)); ++c)
+        near.insert(m.around(m.face(g)[c]).begin(), m.around(m.face(g)[c]).end());
+    const std::size_t crossed = m.crossings(scored, near, cross_tol);
     int best_kind = 0;  // 0: leave it; 1, 2, 3: the repair of that number
     double best_step = 0;
     std::vector<Face> best_split;
@@ -218,10 +229,11 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
         chosen.push_back(pick1);
       }
       const EditableFaces::Score s3 = m.score(sc);
+      const bool s3_crosses = m.crossings(sc, near, cross_tol) > crossed;
       for (std::size_t k = added.size(); k-- > 0;) m.pop_face();
       for (std::size_t k = 0; k < run.size(); ++k) m.set_face(run[k].f, quads[k]);
       // A split costs quads: it must leave fewer panels failing, not only a milder worst one.
-      if (s3.fails < best.fails) {
+      if (s3.fails < best.fails && !s3_crosses) {
         best = s3;
         best_kind = 3;
         best_split = chosen;
@@ -243,7 +255,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
           m.set_position(i, query.closest_point(p0 + (far - p0) * step).point);
         }
         const EditableFaces::Score s2 = m.score(scored);
-        if (s2.better_than(best)) {
+        if (s2.better_than(best) && m.crossings(scored, near, cross_tol) <= crossed) {
           best = s2;
           best_kind = 2;
           best_step = step;
@@ -260,7 +272,10 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
       EditableFaces::Score s1{std::numeric_limits<std::size_t>::max(), 0};
       // A removal that folds the surface over (a merged node's panels lying across the next
       // row's, at a flared stem: property seed 1203) would make panels pass through each other.
-      if (m.manifold(scored) && (folded_before || !folds(m, scored))) s1 = m.score(scored);
+      if (m.manifold(scored) && (folded_before || !folds(m, scored)) &&
+          m.crossings(scored, near, cross_tol) <= crossed) {
+        s1 = m.score(scored);
+      }
       for (const auto& [g, h] : was) m.set_face(g, h);
       if (s1.better_than(best)) {
         best = s1;

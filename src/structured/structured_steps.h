@@ -289,10 +289,12 @@ double side_ratio(std::span<const Vec3d> positions, const Face& f);
 void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span<const Face> faces,
                  std::vector<Vec3d>& positions, int passes);
 
-// Relocation with quality as the objective: each free node in turn tries a few moves along its
-// row and keeps the one that most lowers the worst rule value around it (neighbour area ratio
-// over 2, quad side ratio over 4). Gauss-Seidel in vertex order, so deterministic. Returns the
-// number of moves kept.
+// Relocation with quality as the objective (improve_nodes.cpp): each free node in turn tries a
+// few moves along its row and keeps the one that leaves the fewest rule values over their
+// targets around it (quad side ratio, neighbour area ratio), then the mildest worst one, and
+// makes no more panels cross around it. Then the corners of panels left crossing each other try
+// wider moves that part them. Gauss-Seidel in vertex order, so deterministic. Returns the number
+// of moves kept.
 std::size_t improve_nodes(std::span<const Row> rows, std::span<NodeSlot> slots,
                           std::span<const Face> faces, std::vector<Vec3d>& positions, int passes);
 

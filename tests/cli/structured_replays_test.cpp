@@ -254,5 +254,15 @@ TEST(CliStructured, AHeeledSeamSplitLeavesNoPanelOfNoArea) {
   EXPECT_EQ(k["nonmanifold_edges"], 0);
 }
 
+// DTMB 5415 at 0.238 m, --trim -0.16 and 1,500 panels: at the sonar dome's nose the strip along
+// the stem and the fan over the stem's notch lie a millimetre or two apart, and 4 pairs of their
+// panels passed through each other. The relocation now counts the panels over the rules first and
+// keeps clear of crossings, and no border-panel repair may add one.
+TEST(CliStructured, TheDomesNoseAtALowDraftHasNoPanelsThroughEachOther) {
+  HM_REQUIRE_SHARED_HULL(dtmb, "dtmb5415.iges");
+  expect_one_sound_border(dtmb, "cli_structured_dtmb_dome_nose",
+                          {"--panels 1500 --draft 0.238 --trim -0.16"});
+}
+
 }  // namespace
 }  // namespace hm
