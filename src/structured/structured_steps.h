@@ -85,26 +85,39 @@ struct StationPlan {
   std::vector<std::uint8_t> border;  // 1 at cut stations and at both ends
   std::size_t cuts = 0;
 };
-// Where an open transom's edge turns back in x (DTMB 5415's runs forward from the keel to the
-// bilge, then aft to the deck): the interior vertex of a transom-edge run with its least (side
-// +1) or greatest (side -1) x, both branches running at least a fifth of the panel length hx
-// away from it. On the `side` of x, a station plane cuts the hull in two pieces.
-struct TransomTurn {
+// Where a boundary turns back in x, so that on the `side` of x a station plane cuts the hull in
+// two pieces, and on the other passes the boundary's corner within a hair:
+// - an open transom's edge (DTMB 5415's runs forward from the keel to the bilge, then aft to the
+//   deck): the interior vertex of a transom-edge run with its least (side +1) or greatest (side
+//   -1) x;
+// - the centre-plane profile of a half hull (a stem's notch above a bulb or a sonar dome: side
+//   -1): a vertex of a centre-plane run, not at the run's least or greatest x, where x runs
+//   towards `side` along both branches.
+// Both branches must run at least a fifth of the panel length hx away in x. `clear` is the share
+// of their spacing that stations keep from the turn (keep_clear_of_turns).
+struct BoundaryTurn {
   double x = 0;
   int side = 1;
+  double clear = 0.4;
 };
-std::vector<TransomTurn> transom_turns(const SurfaceMesh& surface, const FeatureSet& features,
-                                       double hx);
-// Moves each station that is no border off the turns, to 0.4 of its spacing from each: a station
-// just on the split side cuts the hull with a sliver of a gap, whose ends' panels are a fraction
-// of the others' area (DTMB 5415, --panels 2000 --match-panels: a station 0.2 mm aft of the turn,
-// a 1 mm gap, 23 panels over the area rule round it); one just on the other side passes the
-// boundary's corner within a hair. A station moves by under its spacing, so the order stays.
-void keep_clear_of_turns(std::span<const TransomTurn> turns, StationPlan& plan);
+std::vector<BoundaryTurn> transom_turns(const SurfaceMesh& surface, const FeatureSet& features,
+                                        double hx);
+std::vector<BoundaryTurn> centre_plane_turns(const SurfaceMesh& surface, const FeatureSet& features,
+                                             double hx);
+// The centre-plane turns of one profile polyline (points in order; closed: the last joins the
+// first), each branch reaching at least `need` (m of x).
+std::vector<BoundaryTurn> profile_turns(std::span<const Vec3d> points, bool closed, double need);
+// Moves each station that is no border off the turns, to `clear` of its spacing from each: a
+// station just on the split side cuts the hull with a sliver of a gap, whose ends' panels are a
+// fraction of the others' area (DTMB 5415, --panels 2000 --match-panels: a station 0.2 mm aft of
+// the transom's turn, a 1 mm gap, 23 panels over the area rule round it); one just on the other
+// side passes the boundary's corner within a hair. A station moves by under its spacing, so the
+// order stays.
+void keep_clear_of_turns(std::span<const BoundaryTurn> turns, StationPlan& plan);
 
 // Stations from the aft end to the forward end: spaced so that a node walking the panel size
 // along the hull, normal to its row, reaches the next station; cut stations included. They keep
-// clear of the transom turns (keep_clear_of_turns).
+// clear of the boundary's turns (keep_clear_of_turns).
 StationPlan plan_stations(const HullQuery& query, const FeatureSet& features,
                           const SurfaceMesh& surface, const Metric& metric,
                           const StructuredOptions& options);

@@ -254,6 +254,16 @@ TEST(CliStructured, AHeeledSeamSplitLeavesNoPanelOfNoArea) {
   EXPECT_EQ(k["nonmanifold_edges"], 0);
 }
 
+// ship_449_patches.iges upright at 7.629 m and 6,000 panels: the waterplane grazes the stern's
+// shelf, whose underside meets the skeg in a notch of the centre-plane profile (x = 72.96 m). A
+// station a hair aft of the notch cut the hull with a sliver of a gap there: 221 pairs of panels
+// through each other. Stations now keep a tenth of their spacing clear of such a turn.
+TEST(CliStructured, StationsKeepClearOfANotchInTheCentrePlaneProfile) {
+  HM_REQUIRE_SHARED_HULL(ship, "ship_449_patches.iges");
+  expect_one_sound_border(ship, "cli_structured_ship449_notch",
+                          {"--panels 6000 --draft 7.629", "--panels 6000 --draft 7.6293"});
+}
+
 // DTMB 5415 at 0.238 m, --trim -0.16 and 1,500 panels: at the sonar dome's nose the strip along
 // the stem and the fan over the stem's notch lie a millimetre or two apart, and 4 pairs of their
 // panels passed through each other. The relocation now counts the panels over the rules first and

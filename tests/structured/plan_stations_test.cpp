@@ -1,7 +1,8 @@
-// Stations off the transom turns: where an open transom's edge turns back in x (DTMB 5415's bilge
-// corner) is found from the boundary runs, not at a run's end, not on a step standing at one x,
-// not on other boundary kinds; stations near a turn move off it to 0.4 of their spacing, on the
-// side they were on, and borders stay.
+// Stations off the boundary's turns: where an open transom's edge turns back in x (DTMB 5415's
+// bilge corner) is found from the boundary runs, not at a run's end, not on a step standing at
+// one x, not on other boundary kinds; so are the turns of the centre-plane profile (a stem's
+// notch above a sonar dome); stations near a turn move off it to its share of their spacing, on
+// the side they were on, and borders stay.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -36,7 +37,7 @@ TEST(PlanStations, ATransomEdgeTurnsWhereItRunsBackInX) {
                                 {3.045, 0.26, 0.2},
                                 {3.060, 0.28, 0.296}};
   const RunCase dtmb = run_through(edge, BoundaryKind::kTransomEdge);
-  const std::vector<TransomTurn> turns = transom_turns(dtmb.surface, dtmb.features, 0.05);
+  const std::vector<BoundaryTurn> turns = transom_turns(dtmb.surface, dtmb.features, 0.05);
   ASSERT_EQ(turns.size(), 1u);
   EXPECT_DOUBLE_EQ(turns[0].x, 3.030);
   EXPECT_EQ(turns[0].side, +1);
@@ -60,7 +61,7 @@ TEST(PlanStations, StationsKeepClearOfTurnsAndBordersStay) {
   StationPlan plan;
   plan.x = {0, 1, 2, 3, 4, 5};
   plan.border = {1, 0, 0, 0, 1, 1};
-  const std::vector<TransomTurn> turns{
+  const std::vector<BoundaryTurn> turns{
       {1.05, +1},  // station 1 just on the whole side: to 1.05 - 0.4
       {2.9, +1},   // station 3 just on the split side: to 2.9 + 0.4
       {4.02, -1},  // station 4 is a border: stays
@@ -75,9 +76,71 @@ TEST(PlanStations, StationsKeepClearOfTurnsAndBordersStay) {
   StationPlan fore;
   fore.x = {0, 1, 2, 3};
   fore.border = {1, 0, 0, 1};
-  keep_clear_of_turns(std::vector<TransomTurn>{{2.1, -1}}, fore);
+  keep_clear_of_turns(std::vector<BoundaryTurn>{{2.1, -1}}, fore);
   EXPECT_DOUBLE_EQ(fore.x[2], 2.1 - 0.4);
   EXPECT_DOUBLE_EQ(fore.x[1], 1.0);
+  // A turn's own clearance: a profile turn's 0.1 moves only the station within a tenth.
+  StationPlan near;
+  near.x = {0, 1, 2, 3};
+  near.border = {1, 0, 0, 1};
+  keep_clear_of_turns(std::vector<BoundaryTurn>{{1.95, -1, 0.1}, {0.8, +1, 0.1}}, near);
+  EXPECT_DOUBLE_EQ(near.x[2], 1.95 + 0.1);
+  EXPECT_DOUBLE_EQ(near.x[1], 1.0);
+}
+
+// DTMB 5415's centre-plane profile near its bow (m), from the deck down: the stem runs aft to a
+// notch at x = -2.631 above the sonar dome, the dome's nose runs forward to x = -2.665, and the
+// keel runs aft. A station just forward of the notch cuts the stem and the dome apart; one just
+// aft passes the notch within a hair.
+std::vector<Vec3d> dtmb_profile() {
+  return {{-3.026, 0, 0.45},  {-2.8, 0, 0.2},     {-2.6425, 0, 0.0}, {-2.633, 0, -0.05},
+          {-2.631, 0, -0.08}, {-2.634, 0, -0.11}, {-2.65, 0, -0.15}, {-2.665, 0, -0.19},
+          {-2.64, 0, -0.22},  {-2.5, 0, -0.23},   {-2.0, 0, -0.15},  {0.0, 0, -0.15}};
+}
+
+TEST(PlanStations, AStemsNotchAboveADomeIsAProfileTurn) {
+  const std::vector<BoundaryTurn> turns = profile_turns(dtmb_profile(), false, 0.006);
+  // The notch (hull in two forward of it) and the dome's nose (aft of it the dome and the stem
+  // are in two as well); not the deck's forward end, the run's least x.
+  ASSERT_EQ(turns.size(), 2u);
+  EXPECT_DOUBLE_EQ(turns[0].x, -2.665);
+  EXPECT_EQ(turns[0].side, +1);
+  EXPECT_DOUBLE_EQ(turns[1].x, -2.631);
+  EXPECT_EQ(turns[1].side, -1);
+  EXPECT_DOUBLE_EQ(turns[1].clear, 0.1);
+  // Both branches must reach: from the notch, the dome's front runs 34 mm forward before the
+  // keel turns it back; from the nose, the dome runs 34 mm aft before the stem turns it back.
+  EXPECT_EQ(profile_turns(dtmb_profile(), false, 0.03).size(), 2u);
+  EXPECT_TRUE(profile_turns(dtmb_profile(), false, 0.04).empty());
+  // A notch standing at one x counts once; the nose below it, at the run's least x, not at all.
+  const std::vector<BoundaryTurn> flat = profile_turns(std::vector<Vec3d>{{-3, 0, 1},
+                                                                          {-2, 0, 0.5},
+                                                                          {-1, 0, 0.2},
+                                                                          {-1, 0, 0},
+                                                                          {-1, 0, -0.2},
+                                                                          {-2, 0, -0.5},
+                                                                          {-3, 0, -1},
+                                                                          {-2, 0, -1.1},
+                                                                          {1, 0, -1.1}},
+                                                       false, 0.1);
+  ASSERT_EQ(flat.size(), 1u);
+  EXPECT_DOUBLE_EQ(flat[0].x, -1);
+  EXPECT_EQ(flat[0].side, -1);
+  // A wiggle smaller than the reach, and a straight keel: nothing.
+  EXPECT_TRUE(profile_turns(
+                  std::vector<Vec3d>{{0, 0, 0}, {1, 0, 0}, {0.999, 0, 0.01}, {2, 0, 0}, {3, 0, 0}},
+                  false, 0.1)
+                  .empty());
+}
+
+TEST(PlanStations, CentrePlaneTurnsComeFromCentrePlaneRunsOnly) {
+  const RunCase profile = run_through(dtmb_profile(), BoundaryKind::kCentrePlane);
+  EXPECT_EQ(centre_plane_turns(profile.surface, profile.features, 0.03).size(), 2u);
+  // hx 0.03: the reach is 0.006 m, as above. A deck edge or a waterline of that shape: none.
+  const RunCase deck = run_through(dtmb_profile(), BoundaryKind::kDeckEdge);
+  EXPECT_TRUE(centre_plane_turns(deck.surface, deck.features, 0.03).empty());
+  const RunCase water = run_through(dtmb_profile(), BoundaryKind::kWaterline);
+  EXPECT_TRUE(centre_plane_turns(water.surface, water.features, 0.03).empty());
 }
 
 }  // namespace
