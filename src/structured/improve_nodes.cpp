@@ -6,7 +6,7 @@
 // Why the count comes first: scored by the worst value alone, a node beside a panel that cannot
 // be mended (a short one fixed on a border row) moves to soften that panel's ratio and hands a
 // failure to the panel beside it; the next node does the same, and a strip grades down towards
-// the fixed panel. DTMB 5415's keel aft of the sonar dome lost 13 panels to the area rule that
+// the fixed panel. DTMB 5415's keel aft of the sonar dome lost 16 panels to the area rule that
 // way. A move changes the areas of the panels around its node only, and every pair of those with
 // their neighbours is counted, so the count is exact for the move.
 //
