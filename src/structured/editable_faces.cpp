@@ -153,6 +153,16 @@ Face renamed(const Face& h, Index from, Index to) {
   return {kInvalid, kInvalid, kInvalid, kInvalid};
 }
 
+std::set<Index> EditableFaces::ring(const std::set<Index>& core) const {
+  std::set<Index> out = core;
+  for (Index g : core) {
+    if (removed(g)) continue;
+    const Face& h = face(g);
+    for (int c = 0; c < corner_count(h); ++c) out.insert(around(h[c]).begin(), around(h[c]).end());
+  }
+  return out;
+}
+
 std::size_t EditableFaces::crossings(const std::set<Index>& core, const std::set<Index>& near,
                                      double tol) const {
   std::size_t n = 0;

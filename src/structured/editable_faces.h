@@ -65,6 +65,10 @@ class EditableFaces {
   // merge along a straight boundary can leave three corners on one line.
   bool flat(const std::set<Index>& core) const;
 
+  // The faces in `core` and every face that shares a corner with one of them: where an edit of
+  // `core` is checked for crossings.
+  std::set<Index> ring(const std::set<Index>& core) const;
+
   // The pairs of a face in `core` and another in `near` that pass through each other
   // (query/find_self_intersections.h; tol in m): an edit may merge a node so that panels it
   // drags along cover others that share no corner with them.

@@ -19,6 +19,7 @@
 #include "core/bbox.h"
 #include "mesh/adjacency.h"
 #include "query/find_self_intersections.h"
+#include "structured/editable_faces.h"
 #include "structured/structured_steps.h"
 
 namespace hm::structured {
@@ -32,14 +33,9 @@ constexpr std::size_t kUntangleListed = 64;
 // A node whose worst rule value around it is under this share of its target is left alone.
 constexpr double kWellInside = 0.5;
 
-// Rule values over their targets around a node, then the worst (each over its target).
-struct Score {
-  int fails = 0;
-  double worst = 0;
-  bool better_than(const Score& o) const {
-    return fails != o.fails ? fails < o.fails : worst < o.worst - 1e-9;
-  }
-};
+// Rule values over their targets around a node, then the worst (each over its target): the
+// border-panel repairs' score.
+using Score = EditableFaces::Score;
 
 BBox3d face_box(std::span<const Vec3d> p, const Face& f) {
   BBox3d b;

@@ -105,13 +105,7 @@ std::size_t pair_triangles(std::span<const std::array<Index, 2>> knuckle_edges,
     // Crossings are looked for one ring further, on the quad's other split too (x-w; the mesh's
     // own split, u-v, is the pair's): where the hull is a few centimetres thick (a Wigley's
     // trimmed end), that diagonal may pass through the panels beyond.
-    std::set<Index> near = judged;
-    for (Index g : judged) {
-      const Face& h = m.face(g);
-      for (int c = 0; c < corner_count(h); ++c) {
-        near.insert(m.around(h[c]).begin(), m.around(h[c]).end());
-      }
-    }
+    const std::set<Index> near = m.ring(judged);
     const EditableFaces::Score before = m.score({cand.first, cand.second}, judged);
     const std::size_t crossed = m.crossings({cand.first, cand.second}, near, cross_tol);
     m.set_face(cand.second, {kInvalid, kInvalid, kInvalid, kInvalid});

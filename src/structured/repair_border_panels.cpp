@@ -184,10 +184,7 @@ BorderRepairCounts repair_border_panels(const HullQuery& query, std::span<const 
     // No repair may make panels pass through others one ring beyond the ones it changes: at a
     // stem a few millimetres off the centre plane, a row's panels and a cap's fan over the same
     // strip lie that close (DTMB 5415's sonar dome).
-    std::set<Index> near = scored;
-    for (Index g : scored)
-      for (int c = 0; c < corner_count(m.face(g)); ++c)
-        near.insert(m.around(m.face(g)[c]).begin(), m.around(m.face(g)[c]).end());
+    const std::set<Index> near = m.ring(scored);
     const std::size_t crossed = m.crossings(scored, near, cross_tol);
     int best_kind = 0;  // 0: leave it; 1, 2, 3: the repair of that number
     double best_step = 0;
