@@ -349,16 +349,18 @@ MergedSurface merge_patches(std::span<const Patch> patches, const SurfaceMesh& t
   check_input(patches, triangulation);
   std::vector<std::pair<PatchId, PatchId>> opposite;
   MergedSurface out = merge_pass(patches, triangulation, options, {}, opposite, progress);
-  // The overlap step compares the normals of coincident layers by su x sv, and lets a covered
-  // region grow only over layers that run the way its seed's did. Where a patch that arrived
-  // flipped overlaps one that did not (a seed covered the opposite way by su x sv, the same
-  // way out of the hull as oriented), that way changes along the region, and part of the
-  // overlap stays uncut. Then the whole merge runs again with every patch turned as this one
-  // oriented it; the second stands unless its surface is worse. Layers whose outsides face each
-  // other (a knife edge, two layers back to back) are no reason to.
+  // The overlap step compares the normals of coincident layers as the patches' own flags turn
+  // them, and lets a covered region grow only over layers that run the way its seed's did.
+  // Where a patch that arrived flipped (no flag says so) overlaps one that did not (a seed
+  // covered the opposite way as compared, the same way out of the hull as oriented: exactly one
+  // of the two was turned), that way changes along the region, and part of the overlap stays
+  // uncut. Then the whole merge runs again with every patch turned as this one oriented it; the
+  // second stands unless its surface is worse. Layers whose outsides face each other (a knife
+  // edge, two layers back to back) are no reason to.
   const std::vector<double> sign = outward_signs(patches, out.report.patches_flipped);
+  const auto turned = [&](PatchId p) { return sign[p] != (patches[p].reversed ? -1.0 : 1.0); };
   const bool flipped_overlap = std::any_of(opposite.begin(), opposite.end(), [&](const auto& pq) {
-    return sign[pq.first] != sign[pq.second];
+    return turned(pq.first) != turned(pq.second);
   });
   if (flipped_overlap) {
     MergedSurface again = merge_pass(patches, triangulation, options, sign, opposite, progress);

@@ -36,7 +36,7 @@ struct OverlapStats {
   double area = 0;       // m^2
   bool changed = false;  // faces removed or corners moved: the border must be collected again
   // (patch, patch below it) of every seed covered by a layer whose normal runs the opposite
-  // way (as compared: su x sv, or turned by outward_sign), sorted, each once.
+  // way (as compared: turned by outward_sign, or by the patches' own flags), sorted, each once.
   std::vector<std::pair<PatchId, PatchId>> covered_opposite;
 };
 // Finds border vertices of one patch that lie inside another patch's surface (closest point
@@ -46,7 +46,8 @@ struct OverlapStats {
 // moves). Of two patches covering each other, the higher-numbered one is cut. border is
 // collect_border of the mesh as it comes in. outward_sign, when not empty, holds +1 or -1 per
 // patch: the side of su x sv the hull's outside lies on, as an earlier merge oriented it (the
-// normals of coincident layers are then compared with their patches turned alike).
+// normals of coincident layers are then compared with their patches turned alike); empty, each
+// patch's `reversed` flag gives it.
 OverlapStats remove_overlaps(std::span<const Patch> patches, Work& w, const Border& border,
                              const MergeOptions& options, double length,
                              std::span<const double> outward_sign, Progress& progress);

@@ -64,21 +64,31 @@ bool edge_cut_less(const EdgeCut& a, const EdgeCut& b) {
 // its seed's did.
 enum class Way : std::int8_t { kEither = 0, kSame = 1, kOpposite = -1 };
 
-// The patches with the side of su x sv their outside lies on (+1 or -1; none known: all +1).
-// A layer is compared by its outward normal where that is known: a patch that arrived flipped
-// under one that did not is then covered the same way as its neighbours are. Compared by su x
-// sv, the way asked along a covered region changed where it passed from a flipped patch below
-// onto an unflipped one, and the growth stopped there (generated Wigley hull, 100 patches, 5%
-// overlaps, every third patch flipped: a corner of patch 39 stayed over patch 6, and the snap
-// folded it).
+// The patches with the side of su x sv their outside lies on (+1 or -1; none given: as each
+// patch's own flag says, -1 where it is `reversed`). A layer is compared by its outward normal
+// where that is known: a patch that arrived flipped under one that did not is then covered the
+// same way as its neighbours are. Compared by su x sv, the way asked along a covered region
+// changed where it passed from a flipped patch below onto an unflipped one, and the growth
+// stopped there (generated Wigley hull, 100 patches, 5% overlaps, every third patch flipped: a
+// corner of patch 39 stayed over patch 6, and the snap folded it).
 struct Layers {
   std::span<const Patch> patches;
   std::span<const double> outward_sign;
-  Vec3d normal_at(PatchId p, double u, double v) const {
-    const Vec3d n = normal(patches[p].surface, u, v);
-    return outward_sign.empty() ? n : outward_sign[p] * n;
+  double sign(PatchId p) const {
+    if (!outward_sign.empty()) return outward_sign[p];
+    return patches[p].reversed ? -1.0 : 1.0;
   }
-  double sign(PatchId p) const { return outward_sign.empty() ? 1.0 : outward_sign[p]; }
+  Vec3d normal_at(PatchId p, double u, double v) const {
+    return sign(p) * normal(patches[p].surface, u, v);
+  }
+  // A closest point's normal, which the query turns by the patch's own flag, turned as
+  // normal_at turns the patch's su x sv. (Until 2026-12-07 it was turned by sign(p) on top of
+  // the flag: on kcs.iges, whose file flags 22 patches reversed, a seed on patch 15 over patch 2
+  // was found covered the opposite way, and the whole merge ran twice.)
+  Vec3d query_normal(const ClosestPoint& cp) const {
+    const double flag = patches[cp.patch].reversed ? -1.0 : 1.0;
+    return (sign(cp.patch) * flag) * cp.normal;
+  }
 };
 
 // How n agrees with the normal of the closest point cp, or with the normal just beside it on
@@ -93,7 +103,7 @@ Way normal_agrees(const Layers& layers, const ClosestPoint& cp, const Vec3d& n, 
     if (asked != Way::kSame && -c >= kMinNormalCos) return Way::kOpposite;
     return Way::kEither;
   };
-  if (const Way w = agrees(layers.sign(cp.patch) * cp.normal); w != Way::kEither) return w;
+  if (const Way w = agrees(layers.query_normal(cp)); w != Way::kEither) return w;
   const NurbsSurface& s = layers.patches[cp.patch].surface;
   const double du = kBeside * (s.u1 - s.u0), dv = kBeside * (s.v1 - s.v0);
   for (const Vec2d d : {Vec2d{du, 0}, Vec2d{-du, 0}, Vec2d{0, dv}, Vec2d{0, -dv}}) {

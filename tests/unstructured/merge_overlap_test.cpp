@@ -1,6 +1,7 @@
 // Overlapping patches that meet at a knuckle inside them: the overlap is cut away there too.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "query/find_self_intersections.h"
@@ -110,6 +111,35 @@ TEST(MergeOverlap, OverlapsOfFlippedAndUnflippedPatchesAreCutAsIfNoneWereFlipped
   EXPECT_EQ(f.knuckles.size(), 0u) << f.knuckle_length() << " m";
   const SelfIntersections x = find_self_intersections(m.merged.mesh, 1e-9 * spec.length);
   EXPECT_EQ(x.count, 0u) << "first near " << (x.first.empty() ? Vec3d{} : x.first[0].where).x;
+}
+
+// The same hull with the flags kept: a file that says which patches it uses reversed (a 510
+// face's orientation flag; kcs.iges flags 22 of its 55). The overlap step compares the layers
+// as the flags turn them, so the overlaps are cut in one pass. It compared su x sv, found the
+// seeds covered the opposite way, and ran the whole merge twice (kcs at 10,000 fine
+// triangles: 0.044 s for its merge, 0.024 s in one pass).
+TEST(MergeOverlap, OverlapsOfPatchesFlaggedReversedAreCutInOnePass) {
+  HullSpec spec;
+  spec.kind = HullKind::kWigley;
+  spec.patches = 100;
+  spec.defects.overlap = 0.05;
+  const Merged plain = merge_of(generate_hull(spec).patches);
+  spec.defects.flip_every = 3;
+  const Merged m = merge_of(generate_hull(spec).patches);
+  EXPECT_EQ(
+      std::count_if(m.patches.begin(), m.patches.end(), [](const Patch& p) { return p.reversed; }),
+      33);
+  EXPECT_FALSE(m.merged.report.overlaps_cut_oriented);
+  EXPECT_TRUE(m.merged.report.patches_flipped.empty());
+  EXPECT_TRUE(m.adj.nonmanifold_edges.empty());
+  EXPECT_TRUE(m.adj.inconsistent_edges.empty());
+  EXPECT_EQ(m.adj.boundary_loops.size(), 1u);
+  EXPECT_NEAR(m.merged.report.overlap_area_removed, plain.merged.report.overlap_area_removed,
+              1e-3 * plain.merged.report.overlap_area_removed);
+  EXPECT_NEAR(total_area(m.merged.mesh), total_area(plain.merged.mesh),
+              1e-4 * total_area(plain.merged.mesh));
+  const FeatureSet f = find_features(m.merged.mesh, m.adj, m.patches, {});
+  EXPECT_EQ(f.knuckles.size(), 0u) << f.knuckle_length() << " m";
 }
 
 }  // namespace
