@@ -1,47 +1,15 @@
 #include "kernels/evaluate_nurbs.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace hm::kernel {
 namespace {
 
-// Sums the homogeneous derivatives A(k, l) = sum_ij N_i^(k)(u) N_j^(l)(v) (w P, w)_ij for
-// k + l <= Order, then applies the quotient rule. nu and nv point at a ders_basis_funs block of at
-// least Order + 1 rows. The summation order is fixed (rows of the net j outside, u inside) and is
-// the same for every Order, so positions do not depend on how many derivatives were asked for.
-// FixedU / FixedV >= 0 are the degrees known at compile time (same operations in the same
-// order: bit-identical to the run-time degrees, with the loops unrolled).
-template <int Order, int FixedU = -1, int FixedV = -1>
-void combine_order(const SurfaceArrays& s, int span_u, const double* nu, int span_v,
-                   const double* nv, Vec3d* out) {
-  const int pu = FixedU >= 0 ? FixedU : s.degree_u;
-  const int pv = FixedV >= 0 ? FixedV : s.degree_v;
-  const int wu = pu + 1;
-  const int wv = pv + 1;
-  double a[Order + 1][Order + 1][4] = {};
-  const std::size_t count_u = static_cast<std::size_t>(s.count_u);
-  const Vec3d* net = s.points.data() + (span_u - pu);
-  const double* net_w = s.weights.data() + (span_u - pu);
-  for (int j = 0; j <= pv; ++j) {
-    const std::size_t row = count_u * static_cast<std::size_t>(span_v - pv + j);
-    const Vec3d* pts = net + row;
-    const double* wts = net_w + row;
-    double t[Order + 1][4] = {};
-    for (int i = 0; i <= pu; ++i) {
-      const double w = wts[i];
-      const double pw[4] = {pts[i].x * w, pts[i].y * w, pts[i].z * w, w};
-      for (int k = 0; k <= Order; ++k) {
-        const double b = nu[k * wu + i];
-        for (int c = 0; c < 4; ++c) t[k][c] += b * pw[c];
-      }
-    }
-    for (int l = 0; l <= Order; ++l) {
-      const double b = nv[l * wv + j];
-      for (int k = 0; k + l <= Order; ++k) {
-        for (int c = 0; c < 4; ++c) a[k][l][c] += b * t[k][c];
-      }
-    }
-  }
+// The quotient rule on the homogeneous derivatives a[k][l] = (A(k, l), w(k, l)) for k + l <=
+// Order: out[0] = S, then Su, Sv, then Suu, Suv, Svv.
+template <int Order>
+void finish(const double (&a)[Order + 1][Order + 1][4], Vec3d* out) {
   // Multiplying by 1 / w instead of dividing: fewer divisions on the hot path.
   const double inv_w = 1.0 / a[0][0][3];
   auto xyz = [&](int k, int l) { return Vec3d{a[k][l][0], a[k][l][1], a[k][l][2]}; };
@@ -58,6 +26,105 @@ void combine_order(const SurfaceArrays& s, int span_u, const double* nu, int spa
       out[3] = (xyz(2, 0) - 2.0 * wu1 * su - a[2][0][3] * p) * inv_w;
       out[4] = (xyz(1, 1) - wu1 * sv - wv1 * su - a[1][1][3] * p) * inv_w;
       out[5] = (xyz(0, 2) - 2.0 * wv1 * sv - a[0][2][3] * p) * inv_w;
+    }
+  }
+}
+
+// One row of the net contracted with the u basis: t[k] = sum_i N_i^(k)(u) (w P, w)_i for k <=
+// Order, i from the first control point of the span. t is the caller's local array (so that the
+// compiler keeps it in registers: a pointer into memory might alias the weights).
+template <int Order, int FixedU = -1>
+void contract_row(int pu_run, const Vec3d* pts, const double* wts, const double* nu,
+                  double (&t)[Order + 1][4]) {
+  const int pu = FixedU >= 0 ? FixedU : pu_run;
+  const int wu = pu + 1;
+  for (int i = 0; i <= pu; ++i) {
+    const double w = wts[i];
+    const double pw[4] = {pts[i].x * w, pts[i].y * w, pts[i].z * w, w};
+    for (int k = 0; k <= Order; ++k) {
+      const double b = nu[k * wu + i];
+      for (int c = 0; c < 4; ++c) t[k][c] += b * pw[c];
+    }
+  }
+}
+
+// Adds row j's contraction, weighted by the v basis, to a[k][l] for k + l <= Order.
+template <int Order, int FixedV = -1>
+void add_row(int pv_run, int j, const double* nv, const double (&t)[Order + 1][4],
+             double (&a)[Order + 1][Order + 1][4]) {
+  const int wv = (FixedV >= 0 ? FixedV : pv_run) + 1;
+  for (int l = 0; l <= Order; ++l) {
+    const double b = nv[l * wv + j];
+    for (int k = 0; k + l <= Order; ++k) {
+      for (int c = 0; c < 4; ++c) a[k][l][c] += b * t[k][c];
+    }
+  }
+}
+
+// Sums the homogeneous derivatives A(k, l) = sum_ij N_i^(k)(u) N_j^(l)(v) (w P, w)_ij for
+// k + l <= Order, then applies the quotient rule. nu and nv point at a ders_basis_funs block of at
+// least Order + 1 rows. The summation order is fixed (rows of the net j outside, u inside) and is
+// the same for every Order, so positions do not depend on how many derivatives were asked for.
+// FixedU / FixedV >= 0 are the degrees known at compile time (same operations in the same
+// order: bit-identical to the run-time degrees, with the loops unrolled).
+template <int Order, int FixedU = -1, int FixedV = -1>
+void combine_order(const SurfaceArrays& s, int span_u, const double* nu, int span_v,
+                   const double* nv, Vec3d* out) {
+  const int pu = FixedU >= 0 ? FixedU : s.degree_u;
+  const int pv = FixedV >= 0 ? FixedV : s.degree_v;
+  double a[Order + 1][Order + 1][4] = {};
+  const std::size_t count_u = static_cast<std::size_t>(s.count_u);
+  const Vec3d* net = s.points.data() + (span_u - pu);
+  const double* net_w = s.weights.data() + (span_u - pu);
+  for (int j = 0; j <= pv; ++j) {
+    const std::size_t row = count_u * static_cast<std::size_t>(span_v - pv + j);
+    double t[Order + 1][4] = {};
+    contract_row<Order, FixedU>(pu, net + row, net_w + row, nu, t);
+    add_row<Order, FixedV>(pv, j, nv, t, a);
+  }
+  finish<Order>(a, out);
+}
+
+// combine_order over a whole grid: each u parameter's contraction with the net rows of a v
+// span is computed once and serves every v parameter in that span (the same sums in the same
+// order as combine_order, so the same bits). rows: scratch.
+template <int Order, int FixedU = -1, int FixedV = -1>
+void grid_order(const SurfaceArrays& s, const BasisTable& bu, const BasisTable& bv,
+                std::vector<double>& rows, Vec3d* out) {
+  const int pu = FixedU >= 0 ? FixedU : s.degree_u;
+  const int pv = FixedV >= 0 ? FixedV : s.degree_v;
+  using Row = double[Order + 1][4];
+  constexpr std::size_t kOut = Order == 0 ? 1 : (Order == 1 ? 3 : 6);
+  const std::size_t block_u = static_cast<std::size_t>(bu.order + 1) * (bu.degree + 1);
+  const std::size_t block_v = static_cast<std::size_t>(bv.order + 1) * (bv.degree + 1);
+  const std::size_t nu = bu.spans.size();
+  const std::size_t count_u = static_cast<std::size_t>(s.count_u);
+  rows.resize(static_cast<std::size_t>(pv + 1) * nu * sizeof(Row) / sizeof(double));
+  Row* row_of = reinterpret_cast<Row*>(rows.data());  // [j * nu + i]
+  int rows_span = -1;
+  for (std::size_t jv = 0; jv < bv.spans.size(); ++jv) {
+    const int span_v = bv.spans[jv];
+    if (span_v != rows_span) {
+      for (int j = 0; j <= pv; ++j) {
+        const std::size_t row = count_u * static_cast<std::size_t>(span_v - pv + j);
+        for (std::size_t i = 0; i < nu; ++i) {
+          const std::size_t first = row + static_cast<std::size_t>(bu.spans[i] - pu);
+          Row t = {};
+          contract_row<Order, FixedU>(pu, s.points.data() + first, s.weights.data() + first,
+                                      &bu.values[block_u * i], t);
+          std::copy(&t[0][0], &t[0][0] + sizeof(Row) / sizeof(double),
+                    &row_of[static_cast<std::size_t>(j) * nu + i][0][0]);
+        }
+      }
+      rows_span = span_v;
+    }
+    const double* nvj = &bv.values[block_v * jv];
+    for (std::size_t i = 0; i < nu; ++i) {
+      double a[Order + 1][Order + 1][4] = {};
+      for (int j = 0; j <= pv; ++j) {
+        add_row<Order, FixedV>(pv, j, nvj, row_of[static_cast<std::size_t>(j) * nu + i], a);
+      }
+      finish<Order>(a, &out[(i + nu * jv) * kOut]);
     }
   }
 }
@@ -210,15 +277,22 @@ void surface_grid_rows(const SurfaceArrays& s, std::span<const double> us,
 void surface_grid_derivs(const SurfaceArrays& s, const BasisTable& bu, const BasisTable& bv,
                          int order, std::span<Vec3d> out) {
   order = std::clamp(order, 0, std::min(bu.order, bv.order));
-  const std::size_t m = order == 0 ? 1 : (order == 1 ? 3 : 6);
-  const std::size_t block_u = static_cast<std::size_t>(bu.order + 1) * (bu.degree + 1);
-  const std::size_t block_v = static_cast<std::size_t>(bv.order + 1) * (bv.degree + 1);
-  const std::size_t nu = bu.spans.size();
-  for (std::size_t j = 0; j < bv.spans.size(); ++j) {
-    for (std::size_t i = 0; i < nu; ++i) {
-      combine(s, bu.spans[i], &bu.values[block_u * i], bv.spans[j], &bv.values[block_v * j], order,
-              &out[(i + nu * j) * m]);
-    }
+  thread_local std::vector<double> rows;
+  constexpr int kCubic = detail::kCommonDegree;
+  const bool cubic = s.degree_u == kCubic && s.degree_v == kCubic;
+  switch (order) {
+    case 0:
+      cubic ? grid_order<0, kCubic, kCubic>(s, bu, bv, rows, out.data())
+            : grid_order<0>(s, bu, bv, rows, out.data());
+      return;
+    case 1:
+      cubic ? grid_order<1, kCubic, kCubic>(s, bu, bv, rows, out.data())
+            : grid_order<1>(s, bu, bv, rows, out.data());
+      return;
+    default:
+      cubic ? grid_order<2, kCubic, kCubic>(s, bu, bv, rows, out.data())
+            : grid_order<2>(s, bu, bv, rows, out.data());
+      return;
   }
 }
 

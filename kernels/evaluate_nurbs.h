@@ -71,8 +71,11 @@ void surface_grid_rows(const SurfaceArrays& s, std::span<const double> us,
                        std::size_t row_begin, std::size_t row_end, std::span<Vec3d> positions,
                        std::span<Vec3d> normals);
 
-// Position and derivatives (as surface_derivs, order 0..2) on the whole grid of two basis tables
-// of at least that order: out[(i + nu * j) * m + d] with m = 1, 3 or 6 entries per point.
+// Position and derivatives (as surface_derivs, order 0..2, bit for bit) on the whole grid of two
+// basis tables of at least that order: out[(i + nu * j) * m + d] with m = 1, 3 or 6 entries per
+// point. Each u parameter is contracted with a v span's rows of the net once for all the v
+// parameters in that span, in their order (sorted parameters: once per span), about 2.4 times
+// fewer operations on a Gauss grid of 7 x 7.
 void surface_grid_derivs(const SurfaceArrays& s, const BasisTable& bu, const BasisTable& bv,
                          int order, std::span<Vec3d> out);
 

@@ -10,6 +10,8 @@
 #include <string>
 
 #include "core/error.h"
+#include "kernels/evaluate_nurbs.h"
+#include "nurbs/basis.h"
 #include "nurbs/evaluate_grid.h"
 #include "nurbs_test_shapes.h"
 #include "support/test_support.h"
@@ -308,6 +310,46 @@ TEST(NurbsKernel, BatchedEqualsSinglePointBitForBit) {
   expect_batch_equals_single(test::sphere_octant(2.0), 17, 9);  // pole: fallback normals
   expect_batch_equals_single(test::quarter_cylinder(1.5, 2.0), 11, 5);
   expect_batch_equals_single(test::random_bicubic(12), 100, 100);  // parallel rows
+}
+
+// The grid kernel contracts each u parameter with a v span's rows of the net once, for every v
+// parameter in that span; the sums and their order are combine's, so every value must be the
+// single point's to the bit. v parameters out of order make it contract the rows again.
+void expect_grid_derivs_equal_single(const NurbsSurface& s, std::vector<double> us,
+                                     std::vector<double> vs) {
+  const kernel::SurfaceArrays a = surface_arrays(s);
+  for (int order = 0; order <= 2; ++order) {
+    kernel::BasisTable bu, bv;
+    kernel::basis_table(a.degree_u, a.count_u, a.knots_u, us, order, bu);
+    kernel::basis_table(a.degree_v, a.count_v, a.knots_v, vs, order, bv);
+    const std::size_t m = order == 0 ? 1 : (order == 1 ? 3 : 6);
+    std::vector<Vec3d> grid(us.size() * vs.size() * m);
+    kernel::surface_grid_derivs(a, bu, bv, order, grid);
+    int mismatches = 0;
+    for (std::size_t j = 0; j < vs.size(); ++j) {
+      for (std::size_t i = 0; i < us.size(); ++i) {
+        Vec3d d[6];
+        kernel::surface_derivs(a, us[i], vs[j], order, d);
+        for (std::size_t k = 0; k < m; ++k) {
+          mismatches += !same_bits(grid[(i + us.size() * j) * m + k], d[k]);
+        }
+      }
+    }
+    EXPECT_EQ(mismatches, 0) << "order " << order;
+  }
+}
+
+TEST(NurbsKernel, GridDerivativesEqualSinglePointBitForBit) {
+  const NurbsSurface cubic = test::random_bicubic(21);
+  expect_grid_derivs_equal_single(cubic, uniform_params(cubic.u0, cubic.u1, 13),
+                                  uniform_params(cubic.v0, cubic.v1, 11));
+  std::vector<double> shuffled = uniform_params(cubic.v0, cubic.v1, 9);
+  std::swap(shuffled[1], shuffled[7]);
+  std::swap(shuffled[2], shuffled[5]);
+  expect_grid_derivs_equal_single(cubic, uniform_params(cubic.u0, cubic.u1, 7), shuffled);
+  const NurbsSurface sphere = test::sphere_octant(2.0);  // rational, degree 2: run-time degrees
+  expect_grid_derivs_equal_single(sphere, uniform_params(sphere.u0, sphere.u1, 6),
+                                  uniform_params(sphere.v0, sphere.v1, 5));
 }
 
 TEST(NurbsKernel, GridIsIdenticalForOneAndManyThreads) {
