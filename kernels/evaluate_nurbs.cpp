@@ -9,7 +9,7 @@ namespace {
 // The quotient rule on the homogeneous derivatives a[k][l] = (A(k, l), w(k, l)) for k + l <=
 // Order: out[0] = S, then Su, Sv, then Suu, Suv, Svv.
 template <int Order>
-void finish(const double (&a)[Order + 1][Order + 1][4], Vec3d* out) {
+[[gnu::always_inline]] inline void finish(const double (&a)[Order + 1][Order + 1][4], Vec3d* out) {
   // Multiplying by 1 / w instead of dividing: fewer divisions on the hot path.
   const double inv_w = 1.0 / a[0][0][3];
   auto xyz = [&](int k, int l) { return Vec3d{a[k][l][0], a[k][l][1], a[k][l][2]}; };
@@ -34,8 +34,8 @@ void finish(const double (&a)[Order + 1][Order + 1][4], Vec3d* out) {
 // Order, i from the first control point of the span. t is the caller's local array (so that the
 // compiler keeps it in registers: a pointer into memory might alias the weights).
 template <int Order, int FixedU = -1>
-void contract_row(int pu_run, const Vec3d* pts, const double* wts, const double* nu,
-                  double (&t)[Order + 1][4]) {
+[[gnu::always_inline]] inline void contract_row(int pu_run, const Vec3d* pts, const double* wts,
+                                                const double* nu, double (&t)[Order + 1][4]) {
   const int pu = FixedU >= 0 ? FixedU : pu_run;
   const int wu = pu + 1;
   for (int i = 0; i <= pu; ++i) {
@@ -50,8 +50,9 @@ void contract_row(int pu_run, const Vec3d* pts, const double* wts, const double*
 
 // Adds row j's contraction, weighted by the v basis, to a[k][l] for k + l <= Order.
 template <int Order, int FixedV = -1>
-void add_row(int pv_run, int j, const double* nv, const double (&t)[Order + 1][4],
-             double (&a)[Order + 1][Order + 1][4]) {
+[[gnu::always_inline]] inline void add_row(int pv_run, int j, const double* nv,
+                                           const double (&t)[Order + 1][4],
+                                           double (&a)[Order + 1][Order + 1][4]) {
   const int wv = (FixedV >= 0 ? FixedV : pv_run) + 1;
   for (int l = 0; l <= Order; ++l) {
     const double b = nv[l * wv + j];
