@@ -54,15 +54,26 @@ void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span
   }
   for (std::size_t v = 0; v < nv; ++v) count[v + 1] += count[v];
   std::vector<Index> nbr(count[nv]);
-  std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
-  for (const Face& f : faces) {
-    const int m = corner_count(f);
-    for (int c = 0; c < m; ++c) {
-      const Index a = f[c], b = f[(c + 1) % m];
-      nbr[fill[a]++] = b;
-      nbr[fill[b]++] = a;
+  {
+    std::vector<std::uint32_t> fill(count.begin(), count.end() - 1);
+    for (const Face& f : faces) {
+      const int m = corner_count(f);
+      for (int c = 0; c < m; ++c) {
+        const Index a = f[c], b = f[(c + 1) % m];
+        nbr[fill[a]++] = b;
+        nbr[fill[b]++] = a;
+      }
     }
   }
+  // Each list sorted and made unique once, for all the passes (each side is listed by both of
+  // its faces): the unique entries are moved to the front of their range, and ends[v] marks
+  // where they stop.
+  std::vector<std::uint32_t> ends(nv);
+  parallel_for(0, nv, [&](std::size_t v) {
+    const auto first = nbr.begin() + count[v], last = nbr.begin() + count[v + 1];
+    std::sort(first, last);
+    ends[v] = static_cast<std::uint32_t>(std::unique(first, last) - nbr.begin());
+  });
   // The row neighbours of each free node: its predecessor and successor on the same curve.
   std::vector<Index> prev(nv, kInvalid), next(nv, kInvalid);
   for (std::size_t v = 0; v + 1 < nv; ++v) {
@@ -79,10 +90,7 @@ void relax_nodes(std::span<const Row> rows, std::span<NodeSlot> slots, std::span
       const NodeSlot& n = slots[v];
       new_s[v] = n.s;
       if (n.fixed || prev[v] == kInvalid || next[v] == kInvalid) return;
-      thread_local std::vector<Index> around;
-      around.assign(nbr.begin() + count[v], nbr.begin() + count[v + 1]);
-      std::sort(around.begin(), around.end());
-      around.erase(std::unique(around.begin(), around.end()), around.end());
+      const std::span<const Index> around(nbr.data() + count[v], nbr.data() + ends[v]);
       if (around.empty()) return;
       Vec3d mean{0, 0, 0};
       for (Index u : around) mean += positions[u];
