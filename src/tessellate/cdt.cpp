@@ -57,6 +57,7 @@ class Triangulator {
   Index last_ = 0;
   std::vector<Index> stamp_;
   Index epoch_ = 0;
+  std::vector<Index> fan_at_;  // per vertex: the new triangle starting there (insert's scratch)
 };
 
 Triangulator::Triangulator(std::span<const Vec2d> input) : n_input_(input.size()) {
@@ -76,6 +77,7 @@ Triangulator::Triangulator(std::span<const Vec2d> input) : n_input_(input.size()
   const Index s0 = Index(n_input_);
   tris_.push_back({{s0, s0 + 1, s0 + 2}, {kInvalid, kInvalid, kInvalid}, true});
   vt_.assign(pts_.size(), 0);
+  fan_at_.assign(pts_.size(), kInvalid);
   merged_.resize(n_input_);
   for (Index i = 0; i < n_input_; ++i) merged_[i] = insert(i);
 }
@@ -163,15 +165,35 @@ Index Triangulator::insert(Index p) {
     vt_[e.a] = t;
     vt_[e.b] = t;
   }
-  // Link the fan around p: new triangle (a, b, p) meets (b, c, p) across (b, p).
+  // Link the fan around p: new triangle (a, b, p) meets (b, c, p) across (b, p). Each vertex of
+  // a simple cavity starts one border edge, so the triangle starting at b is looked up by b (a
+  // cavity on a patch's grid has about 13 sides, and comparing every pair of new triangles was
+  // most of the insertion). A vertex starting two edges (never seen) takes the pairwise rule,
+  // whose last match wins, as it always did.
+  bool simple = true;
   for (Index t = first; t < tris_.size(); ++t) {
-    for (Index u = first; u < tris_.size(); ++u) {
-      if (tris_[u].v[0] == tris_[t].v[1]) {
-        tris_[t].n[0] = u;
-        tris_[u].n[1] = t;
+    Index& at = fan_at_[tris_[t].v[0]];
+    simple = simple && at == kInvalid;
+    at = t;
+  }
+  if (simple) {
+    for (Index t = first; t < tris_.size(); ++t) {
+      const Index u = fan_at_[tris_[t].v[1]];
+      if (u == kInvalid) continue;
+      tris_[t].n[0] = u;
+      tris_[u].n[1] = t;
+    }
+  } else {
+    for (Index t = first; t < tris_.size(); ++t) {
+      for (Index u = first; u < tris_.size(); ++u) {
+        if (tris_[u].v[0] == tris_[t].v[1]) {
+          tris_[t].n[0] = u;
+          tris_[u].n[1] = t;
+        }
       }
     }
   }
+  for (Index t = first; t < tris_.size(); ++t) fan_at_[tris_[t].v[0]] = kInvalid;
   for (Index c : cavity) tris_[c].alive = false;
   vt_[p] = first;
   last_ = first;

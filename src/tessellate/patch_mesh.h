@@ -110,20 +110,9 @@ struct EdgeTable {
   std::vector<Index> first;           // unique edge e: he[first[e], first[e + 1])
   std::vector<Index> edge_of_corner;  // 3t + i -> unique edge
 
-  void build(const std::vector<Tri>& tris) {
-    he.resize(3 * tris.size());
-    for (std::size_t t = 0; t < tris.size(); ++t)
-      for (int i = 0; i < 3; ++i)
-        he[3 * t + i] = {edge_key(tris[t][i], tris[t][(i + 1) % 3]), Index(3 * t + i)};
-    std::sort(he.begin(), he.end());
-    first.clear();
-    edge_of_corner.resize(he.size());
-    for (std::size_t k = 0; k < he.size(); ++k) {
-      if (k == 0 || he[k].key != he[k - 1].key) first.push_back(Index(k));
-      edge_of_corner[he[k].corner] = Index(first.size() - 1);
-    }
-    first.push_back(Index(he.size()));
-  }
+  // he sorted by (key, corner), by a counting sort on the edges' lower vertex
+  // (build_edge_table.cpp).
+  void build(const std::vector<Tri>& tris);
   std::size_t count() const { return first.size() - 1; }
   Index size(Index e) const { return first[e + 1] - first[e]; }
   // Unique edge with this key, or kInvalid.
