@@ -23,6 +23,9 @@ constexpr double kMinCorner = 0.05;
 
 LoopSpot nearest_boundary_edge(const SurfaceMesh& s, const EdgeAdjacency& adj, const Vec3d& q) {
   LoopSpot best;
+  // Squared distances first: the root (monotone) is taken only for an edge that may be nearer,
+  // and an edge is taken only when its rooted distance is, as when every edge was rooted.
+  double best_squared = std::numeric_limits<double>::infinity();
   for (std::size_t l = 0; l < adj.boundary_loops.size(); ++l) {
     const std::vector<Index>& v = adj.boundary_loops[l].vertices;
     for (std::size_t e = 0; e < v.size(); ++e) {
@@ -31,30 +34,49 @@ LoopSpot nearest_boundary_edge(const SurfaceMesh& s, const EdgeAdjacency& adj, c
       const Vec3d d = b - a;
       const double dd = squared_norm(d);
       const double f = dd > 0 ? std::clamp(dot(q - a, d) / dd, 0.0, 1.0) : 0.0;
-      const double dist = norm(a + d * f - q);
-      if (dist < best.distance) best = {l, e, dist};
+      const double squared = squared_norm(a + d * f - q);
+      if (!(squared < best_squared)) continue;
+      const double dist = std::sqrt(squared);
+      if (dist < best.distance) {
+        best = {l, e, dist};
+        best_squared = squared;
+      }
     }
   }
   return best;
 }
 
+namespace {
+
+// Visits the loop vertices strictly between spots a and b, walking forwards or backwards, while
+// visit returns true; returns whether every one was visited.
+template <class Visit>
+bool walk_loop(const std::vector<Index>& v, std::size_t ea, std::size_t eb, bool forward,
+               Visit&& visit) {
+  const std::size_t n = v.size();
+  if (ea == eb) return true;  // both ends on one boundary edge: nothing between them
+  if (forward) {
+    for (std::size_t k = (ea + 1) % n;; k = (k + 1) % n) {
+      if (!visit(v[k])) return false;
+      if (k == eb) return true;
+    }
+  }
+  for (std::size_t k = ea;; k = (k + n - 1) % n) {
+    if (!visit(v[k])) return false;
+    if (k == (eb + 1) % n) return true;
+  }
+}
+
+}  // namespace
+
 // The loop vertices strictly between spots a and b, walking forwards or backwards.
 std::vector<Index> loop_path(const std::vector<Index>& v, std::size_t ea, std::size_t eb,
                              bool forward) {
-  const std::size_t n = v.size();
   std::vector<Index> out;
-  if (ea == eb) return out;  // both ends on one boundary edge: nothing between them
-  if (forward) {
-    for (std::size_t k = (ea + 1) % n;; k = (k + 1) % n) {
-      out.push_back(v[k]);
-      if (k == eb) break;
-    }
-  } else {
-    for (std::size_t k = ea;; k = (k + n - 1) % n) {
-      out.push_back(v[k]);
-      if (k == (eb + 1) % n) break;
-    }
-  }
+  walk_loop(v, ea, eb, forward, [&](Index k) {
+    out.push_back(k);
+    return true;
+  });
   return out;
 }
 
@@ -137,21 +159,27 @@ std::vector<Vec3d> shortest_border_path(const SurfaceMesh& surface, const EdgeAd
   const std::vector<Index>& loop = adj.boundary_loops[sa.loop].vertices;
   std::vector<Vec3d> best;
   double best_len = std::numeric_limits<double>::infinity();
+  std::vector<Vec3d> pts;
   for (const bool forward : {true, false}) {
-    std::vector<Vec3d> pts{a};
-    bool inside = true;
-    for (Index v : loop_path(loop, sa.edge, sb.edge, forward)) {
-      const Vec3d& p = surface.positions[v];
-      inside = inside && p.x >= x_lo && p.x <= x_hi;
-      pts.push_back(p);
-    }
-    if (!inside) continue;
-    pts.push_back(b);
+    // Walked point by point, and dropped as soon as it leaves the slab or grows as long as the
+    // way already found (its length only grows): the long way round a hull's whole outline was
+    // walked for every short path asked.
+    pts.assign(1, a);
     double len = 0;
-    for (std::size_t i = 1; i < pts.size(); ++i) len += metric.length(pts[i - 1], pts[i]);
+    const bool kept = walk_loop(loop, sa.edge, sb.edge, forward, [&](Index v) {
+      const Vec3d& p = surface.positions[v];
+      if (!(p.x >= x_lo && p.x <= x_hi)) return false;
+      len += metric.length(pts.back(), p);
+      if (!(len < best_len)) return false;
+      pts.push_back(p);
+      return true;
+    });
+    if (!kept) continue;
+    len += metric.length(pts.back(), b);
+    pts.push_back(b);
     if (len < best_len) {
       best_len = len;
-      best = std::move(pts);
+      best = pts;
     }
   }
   return best;
