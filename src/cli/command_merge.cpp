@@ -59,6 +59,7 @@ int run_merge(const MergeCommand& c, const GlobalOptions& g) {
   apply_knuckle_hints(hints, hull.patches, nullptr, c.file, feature_options);
   const double t_import = seconds_since(t0);
   TessellateOptions o = c.tessellate;
+  o.measure_chord = false;  // the merge reads no chord error
   if (c.triangles > 0) o.edge_length = edge_length_for_triangles(hull.patches, c.triangles);
   record.log.stage("tessellate");
   const Tessellation t = tessellate(hull.patches, o, record.log);

@@ -63,7 +63,9 @@ NurbsDeviation deviation_from_nurbs(const std::string& iges, const SurfaceMesh& 
     d.mirrored = true;
   }
   // The default tessellation suffices: the closest points are refined on the NURBS.
-  const Tessellation t = tessellate(hull.patches, TessellateOptions{}, silent_progress());
+  TessellateOptions to;
+  to.measure_chord = false;
+  const Tessellation t = tessellate(hull.patches, to, silent_progress());
   const HullQuery query(hull.patches, t.mesh);
   d.measure = measure_deviation(query, mesh);
   return d;

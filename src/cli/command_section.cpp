@@ -104,6 +104,7 @@ int run_section(const SectionCommand& c, const GlobalOptions& g) {
   std::vector<LabelledPlane> planes = collect_planes(c, hull.bbox);
   TessellateOptions to;
   to.chord_tolerance = c.chord_relative * std::max(hull.bbox.extent().x, 1e-12);
+  to.measure_chord = false;
   const Tessellation t = tessellate(hull.patches, to, silent_progress());
   const HullQuery query(hull.patches, t.mesh);
   std::vector<Plane> raw(planes.size());

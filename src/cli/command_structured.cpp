@@ -88,6 +88,7 @@ int run_structured(StructuredCommand c, const GlobalOptions& g) {
   pa.retry_growth = 1.25;
   pa.fine_triangles =
       c.triangles > 0 ? c.triangles : structured_fine_triangles(c.structured.target_panels);
+  pa.tessellate.measure_chord = false;  // nothing here reads the fine mesh's chord errors
   PreparedHull ph;
   prepare_hull(pa, ph);
   const bool mirror = !heeled && (c.symmetry == "full" || (c.symmetry == "auto" && !ph.file_half));

@@ -106,7 +106,7 @@ PatchResult mesh_patch(const Patch& p, const TessellateOptions& o) {
                     merge_tol, collapsed, sampling});
   merge_coincident(r.mesh, merge_tol);
   remove_zero_area(r.mesh, kZeroAreaFraction);
-  r.chord = measure_chord_error(s, r.mesh, collapsed, sampling);
+  if (o.measure_chord) r.chord = measure_chord_error(s, r.mesh, collapsed, sampling);
   return r;
 }
 
@@ -186,7 +186,7 @@ Tessellation tessellate(std::span<const Patch> patches, const TessellateOptions&
   m.vertex_uv.resize(v_off[n]);
   m.faces.resize(t_off[n]);
   m.face_patch.resize(t_off[n]);
-  out.chord_error.resize(t_off[n]);
+  if (o.measure_chord) out.chord_error.resize(t_off[n]);
   parallel_for_each_item(n, [&](std::size_t i) {
     const PatchMesh& pm = results[i].mesh;
     const PatchId pid = PatchId(i);
@@ -199,7 +199,10 @@ Tessellation tessellate(std::span<const Patch> patches, const TessellateOptions&
       m.faces[t_off[i] + t] = {base + tr[0], base + tr[1], base + tr[2], kInvalid};
     }
     std::fill_n(m.face_patch.begin() + t_off[i], pm.tri_count(), pid);
-    std::copy(results[i].chord.begin(), results[i].chord.end(), out.chord_error.begin() + t_off[i]);
+    if (o.measure_chord) {
+      std::copy(results[i].chord.begin(), results[i].chord.end(),
+                out.chord_error.begin() + t_off[i]);
+    }
   });
   TessellateSummary& sum = out.summary;
   sum.patches = n;

@@ -25,6 +25,11 @@ struct TessellateOptions {
   double max_area = 0;         // refine triangles larger than this (m^2); default edge_length^2
   int max_refine_levels = 6;   // adaptive levels after the grid (capped by limits.max_refine_depth)
   double butterfly_tension = 0;  // Zorin's w in the 10-point regular stencil (0: 8-point)
+  // Measure every final triangle's chord error (Tessellation::chord_error, max_chord_error).
+  // Off, both stay empty and 0: for callers that read neither (the structured mesher, the merge,
+  // the hull queries of `quality` and `section`). On a patch whose parameter lines run side by
+  // side it is four closest points a triangle, about a third of its tessellation.
+  bool measure_chord = true;
   ResourceLimits limits;
 };
 

@@ -254,6 +254,27 @@ TEST(Tessellate, OneTwoAndEightThreadsGiveIdenticalArrays) {
   }
 }
 
+// Callers that read no chord error (the structured mesher, the merge) skip its measurement:
+// the mesh is the same to the byte, the errors and their maximum are left empty and 0.
+TEST(Tessellate, SkippingTheChordMeasurementLeavesTheMeshAlone) {
+  Patch holed = test::flat_square(1.0);
+  holed.loops.push_back(test::circle_loop({0.4, 0.6}, 0.2, false));
+  const std::vector<Patch> patches{test::quarter_cylinder(1.0, 2.0), test::apex_patch(), holed};
+  TessellateOptions o;
+  o.edge_length = 0.1;
+  o.chord_tolerance = 1e-4;
+  const Tessellation measured = run(patches, o);
+  o.measure_chord = false;
+  const Tessellation skipped = run(patches, o);
+  EXPECT_TRUE(same_bytes(measured.mesh.positions, skipped.mesh.positions));
+  EXPECT_TRUE(same_bytes(measured.mesh.faces, skipped.mesh.faces));
+  EXPECT_TRUE(same_bytes(measured.mesh.vertex_uv, skipped.mesh.vertex_uv));
+  EXPECT_EQ(measured.chord_error.size(), measured.mesh.face_count());
+  EXPECT_GT(measured.summary.max_chord_error, 0.0);
+  EXPECT_TRUE(skipped.chord_error.empty());
+  EXPECT_EQ(skipped.summary.max_chord_error, 0.0);
+}
+
 TEST(Tessellate, DefaultsFollowTheHullSize) {
   const std::vector<Patch> patches{test::quarter_cylinder(10.0, 40.0)};
   const TessellateOptions o = resolve_options(patches, {});
