@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "core/parallel.h"
 #include "mesh/adjacency.h"
 #include "unstructured/merge_steps.h"
 
@@ -87,11 +88,34 @@ void rings(const SurfaceMesh& m, std::vector<Index>& begin, std::vector<Index>& 
 std::size_t split_flat_faces(Work& w, double length) {
   SurfaceMesh& m = w.mesh;
   // Most merges have none: a scan, and no adjacency built (the merge's cost is issue 4's goal).
-  const bool any = std::any_of(m.faces.begin(), m.faces.end(), [&](const Face& t) {
-    int k = 0;
-    return flat_with_spot_side(m, t, k) || flat_with_inside_corner(m, t, k);
-  });
-  if (!any) return 0;
+  // The scan runs in blocks, each its own flag. A face with area (over kFlatRel of its longest
+  // side squared) is neither kind of flat face, and only such a face's kind is asked: at 470,000
+  // triangles the scan took 14 ms, serial and asking both kinds of every face.
+  constexpr std::size_t kBlock = 4096;
+  std::vector<std::uint8_t> block_has((m.face_count() + kBlock - 1) / kBlock, 0);
+  parallel_for(
+      0, block_has.size(),
+      [&](std::size_t b) {
+        const std::size_t end = std::min(m.face_count(), (b + 1) * kBlock);
+        for (std::size_t f = b * kBlock; f < end; ++f) {
+          const Face& t = m.faces[f];
+          double longest = 0;
+          for (int c = 0; c < 3; ++c) {
+            longest =
+                std::max(longest, squared_norm(m.positions[t[(c + 1) % 3]] - m.positions[t[c]]));
+          }
+          if (!(longest > 0) || face_area(m.positions, t) > kFlatRel * longest) continue;
+          int k = 0;
+          if (flat_with_spot_side(m, t, k) || flat_with_inside_corner(m, t, k)) {
+            block_has[b] = 1;
+            break;
+          }
+        }
+      },
+      1);
+  if (std::none_of(block_has.begin(), block_has.end(), [](std::uint8_t h) { return h != 0; })) {
+    return 0;
+  }
   std::size_t total = 0;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     const EdgeAdjacency adj = build_edge_adjacency(m.faces, m.vertex_count());
