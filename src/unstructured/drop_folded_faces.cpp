@@ -185,18 +185,25 @@ std::vector<std::pair<Index, Index>> folded_edge_welds(const Work& w, const Edge
   const auto flap = [&](Index f) { return is_flap(adj, f, turned); };
   std::vector<std::uint8_t> taken(m.vertex_count(), 0), inconsistent(adj.edges.size(), 0);
   for (Index e : adj.inconsistent_edges) inconsistent[e] = 1;
-  for (std::size_t e = 0; e < adj.edges.size(); ++e) {
-    // collect: interior edges wound consistently between two thin faces or two faces turned
-    // against each other; score: the faces' directions away from the edge.
+  // collect: interior edges wound consistently between two thin faces or two faces turned
+  // against each other; score: the faces' directions away from the edge. Each edge's own flag,
+  // in parallel (none depends on another's selection); the few kept are selected in edge order.
+  std::vector<std::uint8_t> candidate(adj.edges.size(), 0);
+  parallel_for(0, adj.edges.size(), [&](std::size_t e) {
     const MeshEdge& edge = adj.edges[e];
-    if (edge.uses != 2 || inconsistent[e]) continue;
+    if (edge.uses != 2 || inconsistent[e]) return;
     const Index a = edge.first_slot / 4, b = adj.opposite_face[edge.first_slot];
-    if (b == kInvalid) continue;
-    const bool slivers = thin[a] && thin[b];
-    if (!slivers && !(turned(a, b) && (flap(a) || flap(b)))) continue;
+    if (b == kInvalid) return;
+    if (!(thin[a] && thin[b]) && !(turned(a, b) && (flap(a) || flap(b)))) return;
     const Vec3d away_a = away_from_edge(m, m.faces[a], edge.v0, edge.v1);
     const Vec3d away_b = away_from_edge(m, m.faces[b], edge.v0, edge.v1);
-    if (!(dot(away_a, away_b) >= kFoldCos)) continue;
+    candidate[e] = dot(away_a, away_b) >= kFoldCos;
+  });
+  for (std::size_t e = 0; e < adj.edges.size(); ++e) {
+    if (!candidate[e]) continue;
+    const MeshEdge& edge = adj.edges[e];
+    const Index a = edge.first_slot / 4, b = adj.opposite_face[edge.first_slot];
+    const bool slivers = thin[a] && thin[b];
     // select: the third corners, near each other and in no other weld.
     Index c = kInvalid, d = kInvalid;
     for (int k = 0; k < 3; ++k) {

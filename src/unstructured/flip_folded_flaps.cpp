@@ -44,11 +44,17 @@ std::size_t flip_pass(Work& w, const EdgeAdjacency& adj) {
   std::vector<std::uint8_t> touched(m.face_count(), 0);
   std::vector<std::array<Index, 2>> made;  // edges the flips made, unknown to adj
   std::size_t flipped = 0;
-  for (std::size_t e = 0; e < adj.edges.size(); ++e) {
-    // collect: interior, consistently wound edges between two folded triangles, one a flap.
+  // collect: interior, consistently wound edges between two folded triangles, one a flap. The
+  // fold is read from the normals as the pass began, so each edge's flag is its own, found in
+  // parallel; the few flagged are flipped in edge order.
+  std::vector<std::uint8_t> folded(adj.edges.size(), 0);
+  parallel_for(0, adj.edges.size(), [&](std::size_t e) {
     const MeshEdge& edge = adj.edges[e];
-    if (edge.uses != 2 || adj.opposite_face[edge.first_slot] == kInvalid) continue;
-    if (!turned(edge.first_slot / 4, adj.opposite_face[edge.first_slot])) continue;
+    const Index g = adj.opposite_face[edge.first_slot];
+    folded[e] = edge.uses == 2 && g != kInvalid && turned(edge.first_slot / 4, g);
+  });
+  for (std::size_t e = 0; e < adj.edges.size(); ++e) {
+    if (!folded[e]) continue;
     const std::optional<EdgeFlip> f = edge_flip(m, adj, static_cast<Index>(e));
     if (!f || touched[f->g] || touched[f->h]) continue;
     // One of the two is the flap; the other lies in the surface around it.
