@@ -82,9 +82,10 @@ struct Layers {
     return sign(p) * normal(patches[p].surface, u, v);
   }
   // A closest point's normal, which the query turns by the patch's own flag, turned as
-  // normal_at turns the patch's su x sv. (Until 2026-12-07 it was turned by sign(p) on top of
-  // the flag: on kcs.iges, whose file flags 22 patches reversed, a seed on patch 15 over patch 2
-  // was found covered the opposite way, and the whole merge ran twice.)
+  // normal_at turns the patch's su x sv. (Until 2026-12-07 the first merge set the vertex's
+  // plain su x sv against the query's flag-turned normal, and the second turned the query's
+  // normal by sign(p) on top of the flag. kcs.iges flags 22 patches reversed: a seed on its
+  // patch 15 over patch 2 was found covered the opposite way, and the whole merge ran twice.)
   Vec3d query_normal(const ClosestPoint& cp) const {
     const double flag = patches[cp.patch].reversed ? -1.0 : 1.0;
     return (sign(cp.patch) * flag) * cp.normal;
