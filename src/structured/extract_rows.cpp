@@ -275,6 +275,37 @@ bool near_in_section(const RowCurve& a, const RowCurve& b, double gap) {
          bb.lo.z <= ba.hi.z + gap;
 }
 
+// The curves run between the same two stretches of boundary: both ends within `reach` (m, in y
+// and z) of the other's. A curve from the keel to the waterline and a fragment of it are not.
+bool same_piece(const RowCurve& a, const RowCurve& b, double reach) {
+  const auto near = [&](const Vec3d& p, const Vec3d& q) {
+    return std::hypot(p.y - q.y, p.z - q.z) <= reach;
+  };
+  return near(a.points.front(), b.points.front()) && near(a.points.back(), b.points.back());
+}
+
+// Whether curve i of row j runs on, station by station towards `step` (+1 forward, -1 aft),
+// through curves of the same piece that are dropped, to one that is kept.
+bool kept_beyond(const std::vector<Row>& rows, const std::vector<std::vector<std::uint8_t>>& drop,
+                 std::size_t j, std::size_t i, int step, double reach) {
+  const RowCurve* at = &rows[j].curves[i];
+  for (std::ptrdiff_t k = static_cast<std::ptrdiff_t>(j) + step;
+       k >= 0 && k < static_cast<std::ptrdiff_t>(rows.size()); k += step) {
+    const Row& row = rows[static_cast<std::size_t>(k)];
+    const RowCurve* next = nullptr;
+    bool kept = false;
+    for (std::size_t c = 0; c < row.curves.size() && !next; ++c) {
+      if (!same_piece(*at, row.curves[c], reach)) continue;
+      next = &row.curves[c];
+      kept = drop[static_cast<std::size_t>(k)][c] == 0;
+    }
+    if (!next) return false;
+    if (kept) return true;
+    at = next;
+  }
+  return false;
+}
+
 // Drops the rows' fragments: curves under kFragmentPanels long and under kFragmentShare of their
 // row's longest curve. A station that grazes a raked transom or a skeg cuts off such a sliver;
 // the strips on either side cover its surface, and a sliver row of its own would pair with
@@ -314,6 +345,26 @@ void drop_fragments(std::vector<Row>& rows, double gap) {
       const bool kept = !fragment || (!rows[j].border && c.length() >= kRunPanels && runs);
       drop[j].push_back(kept ? 0 : 1);
     }
+  }
+  // A piece of hull that is a fragment at some stations only, between stations that keep it, is
+  // kept at those too. Whether a short curve is a fragment depends on its row's longest curve,
+  // and where that is a bulb narrowing to its nose the stem above it was dropped at two stations
+  // and kept at the two after: the strip before the gap capped the stem to its tip, over the
+  // panels of the rows beyond (property seed 30378 in wide mode, a round-bilge hull trimmed by
+  // the bow: 2 pairs of panels through each other at the stem's tip).
+  std::vector<std::vector<std::uint8_t>> rekeep(rows.size());
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    rekeep[j].assign(rows[j].curves.size(), 0);
+    for (std::size_t i = 0; i < rows[j].curves.size(); ++i) {
+      if (drop[j][i] && kept_beyond(rows, drop, j, i, -1, 0.5 * gap) &&
+          kept_beyond(rows, drop, j, i, +1, 0.5 * gap)) {
+        rekeep[j][i] = 1;
+      }
+    }
+  }
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    for (std::size_t i = 0; i < rows[j].curves.size(); ++i)
+      if (rekeep[j][i]) drop[j][i] = 0;
   }
   // The end rows: a curve short by the row beside it (which may have dropped its own fragments
   // of the same piece) with no kept curve of that row beside it is a piece of hull whose strip

@@ -19,7 +19,11 @@
 //     panels through each other);
 //   - seed 9107 (HM_PROPERTY_WIDE): a round-bilge hull trimmed 0.75 degrees by the bow, whose
 //     bulb's stem got two nodes 2.5e-11 m apart and a triangle of no area between them (now one
-//     node: weld_coincident_nodes).
+//     node: weld_coincident_nodes);
+//   - seed 30378 (HM_PROPERTY_WIDE): a round-bilge hull trimmed 0.26 degrees by the bow, whose stem
+//     above a bulb was a fragment at two stations and kept at the two after them: the strip
+//     before capped the stem to its tip over those rows' panels (2 pairs of panels through each
+//     other; now the stem is kept at every station between: drop_fragments).
 #include <filesystem>
 #include <initializer_list>
 #include <string>
@@ -73,6 +77,10 @@ TEST(CliStructured, ReplayedPropertyCasesBreakNoHardRule) {
        "round-bilge --length 45.5777 --beam 4.86558 --draft 1.33358 --depth 2.04774 --patches 6 "
        "--seed 9107 --duplicate-points",
        "1.31747", 800, "--trim 0.75142"},
+      {"stem kept between its fragments 30378",
+       "round-bilge --length 181.106 --beam 15.4884 --draft 6.67094 --depth 8.01158 --patches 16 "
+       "--seed 30378 --duplicate-points --flip-every 4",
+       "7.07197", 1000, "--trim 0.26489"},
   };
   test::expect_replays_break_no_hard_rule("structured", cases, "cli_structured_replays");
 }
