@@ -154,6 +154,38 @@ TEST(JoinSides, ATriangleSplitAtANodeOnItsSideLeavesNoFlatPiece) {
   }
 }
 
+// The same with the node a hair off the side (4e-4 m, 2e-4 of its length, in the plane): not
+// flat, so the rule above let the whole triangle's far corner go first, and the node and the
+// side's ends were left as a needle of 4e-4 m^2 beside a panel of 1.7 m^2. The ear is now
+// judged by the smaller angle of both triangles it makes.
+TEST(JoinSides, ATriangleSplitAtANodeJustOffItsSideLeavesNoNeedle) {
+  StructuredMesh port;
+  SurfaceMesh& m = port.mesh;
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {1, 1.7, 0}};
+  m.faces = {{0, 1, 2, kInvalid}};
+  m.face_patch = {0};
+  m.face_block = {0};
+  m.vertex_patch.assign(3, 0);
+  m.vertex_uv.assign(3, Vec2d{0, 0});
+  BlockReport b;
+  b.triangles = 1;
+  port.report.blocks.push_back(b);
+  port.report.triangles = 1;
+  StructuredMesh starboard = side({0, 1.9, 2}, false);
+  starboard.mesh.positions[2].z = 4e-4;  // the node at x = 1.9 on the seam
+  SideJoin c;
+  const StructuredMesh j = join_sides(port, starboard, seam(), &c);
+  ASSERT_EQ(c.inserted, 1u);
+  EXPECT_EQ(open_seam_edges(j.mesh), 0u);
+  for (const Face& f : j.mesh.faces) {
+    double longest = 0;
+    for (int k = 0; k < corner_count(f); ++k)
+      longest = std::max(longest, squared_norm(j.mesh.positions[f[(k + 1) % corner_count(f)]] -
+                                               j.mesh.positions[f[k]]));
+    EXPECT_GT(face_area(j.mesh.positions, f), 1e-3 * longest);
+  }
+}
+
 TEST(JoinSides, ASeamEndBeyondTheOtherSideStaysOpen) {
   SideJoin c;
   // Starboard's seam runs one panel further aft: that edge has nothing to meet.
