@@ -89,5 +89,8 @@ struct PatchCandidates {
   int count = 0;
 };
 PatchCandidates patches_near(const HullQuery::Impl& m, const Vec3d& q, double extra);
+// The mesh vertex nearest q (model frame) among those made on patch p (vertex_patch), found
+// through the triangles that hold them; kInvalid when the mesh has no vertex patches or none.
+Index nearest_vertex_on(const HullQuery::Impl& m, const Vec3d& q, PatchId p);
 
 }  // namespace hm::query

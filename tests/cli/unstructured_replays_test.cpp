@@ -23,6 +23,12 @@
 //   - seed 2143 (wide mode): a full chine hull of 3 patches with a 0.1 m gap, whose transom's
 //     foot, one point at the keel, opened into a short row the snap folded back over; 5 pairs
 //     of panels passed through each other there (collapse_overrun in snap_borders.cpp).
+//   - seed 1385: a full chine hull of 2 patches with 0.0088 m gaps, whose transom's foot the
+//     merge closes with a triangle from one patch's transom edge to the other's keel, lying
+//     over neither; Newton from it, from its corners and from the patch's nearest vertex ended
+//     on a keel or on the transom, and the deviation check reported 0.14 m over a bound of 0.09
+//     m where the panel lay under a millimetre off the bottom (closest_point_query.cpp: Newton
+//     again inside each knot span around).
 #include "support/replay.h"
 
 namespace hm {
@@ -84,6 +90,10 @@ TEST(CliUnstructured, ReplayedPropertyCasesBreakNoHardRule) {
        "chine --length 174.128 --beam 16.5586 --draft 5.32431 --depth 8.47722 --patches 3 "
        "--seed 2143 --full --overlap 0.05 --flip-every 4 --gap 0.105288",
        "4.88268", 700},
+      {"notch at a transom's foot 1385",
+       "chine --length 87.8035 --beam 13.7202 --draft 6.04225 --depth 9.64334 --patches 2 "
+       "--seed 1385 --full --gap 0.00878035",
+       "6.08005", 700},
   };
   test::expect_replays_break_no_hard_rule("unstructured", cases, "cli_unstructured_replays");
 }
