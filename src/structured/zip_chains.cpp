@@ -44,12 +44,27 @@ ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::
   ZipCounts n;
   std::size_t i = 0, k = 0;
   const std::size_t na = a.size(), nb = b.size();
+  // Chains that share an end (a cap's boundary path from one end of a row to the other): a
+  // triangle whose apex is that end and whose base is the other chain's edge lies along that
+  // chain, three of its nodes in a row (a sonar dome's nose a centimetre beyond dtmb5415's first
+  // station at a 0.348 m draft: the row's end nodes fanned over its own edges, area ratios of
+  // 55 and 42). So both chains leave a shared start together (a chain that left alone would
+  // start with a quad of three nodes in a row, or fan), and neither steps onto a shared end
+  // while the other has more than its last edge to go.
+  const bool shared_start = na > 1 && nb > 1 && a[0] == b[0];
+  const bool shared_end = na > 1 && nb > 1 && a[na - 1] == b[nb - 1];
   while (i + 1 < na || k + 1 < nb) {
     // The fraction mismatch each move leaves behind; a quad wins ties.
     const double inf = 1e300;
-    const double both = i + 1 < na && k + 1 < nb ? std::abs(fa[i + 1] - fb[k + 1]) : inf;
-    const double only_a = i + 1 < na ? std::abs(fa[i + 1] - fb[k]) : inf;
-    const double only_b = k + 1 < nb ? std::abs(fa[i] - fb[k + 1]) : inf;
+    double both = i + 1 < na && k + 1 < nb ? std::abs(fa[i + 1] - fb[k + 1]) : inf;
+    double only_a = i + 1 < na ? std::abs(fa[i + 1] - fb[k]) : inf;
+    double only_b = k + 1 < nb ? std::abs(fa[i] - fb[k + 1]) : inf;
+    if (shared_start && i == 0 && k == 0) only_a = only_b = inf;
+    if (shared_end) {
+      // Onto a's last node while b has two edges or more left, or b's while a has.
+      if (i + 2 == na && k + 2 < nb) both = only_a = inf;
+      if (k + 2 == nb && i + 2 < na) both = only_b = inf;
+    }
     // Chains with as many nodes left on both sides finish in quads: a triangle here would force
     // a second one further on.
     const bool level = na - i == nb - k;

@@ -86,6 +86,26 @@ TEST(ZipChains, SharedEndsBecomeTriangles) {
   }
 }
 
+// A cap whose boundary path has one node of its own (a dome's nose just beyond the row): no
+// face may have all its corners on the row, where the end nodes fanned over the row's own
+// edges, three nodes in a row, before.
+TEST(ZipChains, ASharedEndDoesNotFanOverItsOwnChain) {
+  for (int n : {4, 6, 10}) {
+    Chains c = make(n, 2);
+    c.b.front() = c.a.front();
+    c.b.back() = c.a.back();
+    std::vector<Face> faces;
+    zip_chains(c.a, c.fa, c.b, c.fb, c.pos, {}, faces);
+    expect_consistent(faces, c.pos);
+    const Index tip = c.b[1];
+    for (const Face& f : faces) {
+      bool off_a = false;
+      for (int k = 0; k < corner_count(f); ++k) off_a = off_a || f[k] == tip;
+      EXPECT_TRUE(off_a) << n << ": " << f[0] << " " << f[1] << " " << f[2];
+    }
+  }
+}
+
 TEST(ZipChains, TwistedQuadIsSplit) {
   Chains c = make(1, 1);
   c.pos[c.b[1]].z = 1.5;  // lifts one corner far off the plane of the other three
