@@ -70,6 +70,21 @@ TEST(CliStructured, HeeledHullsMeshSideBySide) {
   }
 }
 
+// kcs.iges heeled 15 degrees: the border gap from the first row's end along the waterline to the
+// stem was fanned from the row's end, and the fan's last triangle lay on the waterline, a panel
+// of 1.2e-5 m^2 beside one of 0.0026 (largest area ratio 222; 178 and 162 heeled -8 and 5
+// degrees). The gap is now closed by its best triangulation where the fan has a sliver.
+TEST(CliStructured, AHeeledStemsBorderGapHasNoSliverOnTheWaterline) {
+  HM_REQUIRE_SHARED_HULL(kcs, "kcs.iges");
+  const fs::path out = test::scratch_dir("cli_structured_heel_gap") / "k.gdf";
+  const auto r = run_hullmesh("--validate structured '" + kcs.string() + "' -o '" + out.string() +
+                              "' --panels 3000 --draft 0.4464 --heel 15");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const nlohmann::json q = run_record(out)["quality"];
+  EXPECT_LT(q["max_area_ratio"].get<double>(), 20);
+  EXPECT_EQ(q["crossing_pairs"], 0);
+}
+
 TEST(CliStructured, HeeledHullIsTheSameWithOneAndTwoThreadsAndTakesABlockFile) {
   const fs::path dir = test::scratch_dir("cli_structured_heel_threads");
   const std::string igs = (dir / "c.igs").string();
