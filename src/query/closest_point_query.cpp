@@ -138,6 +138,20 @@ bool visit_corners(RTCPointQueryFunctionArguments* args) noexcept {
   return shrunk;
 }
 
+// Embree's point query about q (local frame) over the hull's triangles: the sphere starts
+// unbounded and the callback shrinks it.
+void point_query(const Impl& m, const Vec3d& q, RTCPointQueryFunction visit, void* state) {
+  RTCPointQuery query;
+  query.x = static_cast<float>(q.x);
+  query.y = static_cast<float>(q.y);
+  query.z = static_cast<float>(q.z);
+  query.time = 0;
+  query.radius = std::numeric_limits<float>::infinity();
+  RTCPointQueryContext ctx;
+  rtcInitPointQueryContext(&ctx);
+  rtcPointQuery(m.scene.get(), &query, &ctx, visit, state);
+}
+
 }  // namespace
 
 Index nearest_vertex_on(const Impl& m, const Vec3d& q_model, PatchId p) {
@@ -146,15 +160,7 @@ Index nearest_vertex_on(const Impl& m, const Vec3d& q_model, PatchId p) {
   s.m = &m;
   s.q = q_model - m.centre;
   s.patch = p;
-  RTCPointQuery query;
-  query.x = static_cast<float>(s.q.x);
-  query.y = static_cast<float>(s.q.y);
-  query.z = static_cast<float>(s.q.z);
-  query.time = 0;
-  query.radius = std::numeric_limits<float>::infinity();
-  RTCPointQueryContext ctx;
-  rtcInitPointQueryContext(&ctx);
-  rtcPointQuery(m.scene.get(), &query, &ctx, visit_corners, &s);
+  point_query(m, s.q, visit_corners, &s);
   return s.vertex;
 }
 
@@ -163,15 +169,7 @@ PatchCandidates patches_near(const Impl& m, const Vec3d& q_model, double extra) 
   s.m = &m;
   s.q = q_model - m.centre;
   s.margin = 2 * m.max_deviation + 1e-9 * m.length + extra;
-  RTCPointQuery query;
-  query.x = static_cast<float>(s.q.x);
-  query.y = static_cast<float>(s.q.y);
-  query.z = static_cast<float>(s.q.z);
-  query.time = 0;
-  query.radius = std::numeric_limits<float>::infinity();
-  RTCPointQueryContext ctx;
-  rtcInitPointQueryContext(&ctx);
-  rtcPointQuery(m.scene.get(), &query, &ctx, visit_triangle, &s);
+  point_query(m, s.q, visit_triangle, &s);
   if (s.error) std::rethrow_exception(s.error);
 
   // Keep the patches within reach of the nearest, nearest first (ties by patch: deterministic).

@@ -70,6 +70,34 @@ double total_area(const SurfaceMesh& m) {
   return a;
 }
 
+// Port: one triangle with its side (0, 0)-(2, 0) on the seam, 1.7 high; one block.
+StructuredMesh one_triangle_port() {
+  StructuredMesh port;
+  SurfaceMesh& m = port.mesh;
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {1, 1.7, 0}};
+  m.faces = {{0, 1, 2, kInvalid}};
+  m.face_patch = {0};
+  m.face_block = {0};
+  m.vertex_patch.assign(3, 0);
+  m.vertex_uv.assign(3, Vec2d{0, 0});
+  BlockReport b;
+  b.triangles = 1;
+  port.report.blocks.push_back(b);
+  port.report.triangles = 1;
+  return port;
+}
+
+// Every face has an area over 1e-3 of its longest side squared.
+void expect_no_needle(const SurfaceMesh& m) {
+  for (const Face& f : m.faces) {
+    double longest = 0;
+    for (int k = 0; k < corner_count(f); ++k)
+      longest = std::max(
+          longest, squared_norm(m.positions[f[(k + 1) % corner_count(f)]] - m.positions[f[k]]));
+    EXPECT_GT(face_area(m.positions, f), 1e-3 * longest);
+  }
+}
+
 TEST(JoinSides, NodesThatMeetAreWelded) {
   SideJoin c;
   const StructuredMesh j =
@@ -127,31 +155,14 @@ TEST(JoinSides, NodesBetweenTheOthersGoIntoTheirEdgesAndThePanelsSplit) {
 // the best shape first (here the whole triangle's far corner) left the node and the side's ends
 // as the last triangle, of no area; the ear is now chosen with the triangle it leaves.
 TEST(JoinSides, ATriangleSplitAtANodeOnItsSideLeavesNoFlatPiece) {
-  StructuredMesh port;
-  SurfaceMesh& m = port.mesh;
-  m.positions = {{0, 0, 0}, {2, 0, 0}, {1, 1.7, 0}};
-  m.faces = {{0, 1, 2, kInvalid}};
-  m.face_patch = {0};
-  m.face_block = {0};
-  m.vertex_patch.assign(3, 0);
-  m.vertex_uv.assign(3, Vec2d{0, 0});
-  BlockReport b;
-  b.triangles = 1;
-  port.report.blocks.push_back(b);
-  port.report.triangles = 1;
+  const StructuredMesh port = one_triangle_port();
   SideJoin c;
   const StructuredMesh j = join_sides(port, side({0, 1.9, 2}, false), seam(), &c);
   EXPECT_EQ(c.inserted, 1u);
   EXPECT_EQ(open_seam_edges(j.mesh), 0u);
   EXPECT_EQ(faces_turned(j.mesh), 0u);
   EXPECT_NEAR(total_area(j.mesh), 1.7 + 2.0, 1e-12);
-  for (const Face& f : j.mesh.faces) {
-    double longest = 0;
-    for (int k = 0; k < corner_count(f); ++k)
-      longest = std::max(longest, squared_norm(j.mesh.positions[f[(k + 1) % corner_count(f)]] -
-                                               j.mesh.positions[f[k]]));
-    EXPECT_GT(face_area(j.mesh.positions, f), 1e-3 * longest);
-  }
+  expect_no_needle(j.mesh);
 }
 
 // The same with the node a hair off the side (4e-4 m, 2e-4 of its length, in the plane): not
@@ -159,31 +170,14 @@ TEST(JoinSides, ATriangleSplitAtANodeOnItsSideLeavesNoFlatPiece) {
 // side's ends were left as a needle of 4e-4 m^2 beside a panel of 1.7 m^2. The ear is now
 // judged by the smaller angle of both triangles it makes.
 TEST(JoinSides, ATriangleSplitAtANodeJustOffItsSideLeavesNoNeedle) {
-  StructuredMesh port;
-  SurfaceMesh& m = port.mesh;
-  m.positions = {{0, 0, 0}, {2, 0, 0}, {1, 1.7, 0}};
-  m.faces = {{0, 1, 2, kInvalid}};
-  m.face_patch = {0};
-  m.face_block = {0};
-  m.vertex_patch.assign(3, 0);
-  m.vertex_uv.assign(3, Vec2d{0, 0});
-  BlockReport b;
-  b.triangles = 1;
-  port.report.blocks.push_back(b);
-  port.report.triangles = 1;
+  const StructuredMesh port = one_triangle_port();
   StructuredMesh starboard = side({0, 1.9, 2}, false);
   starboard.mesh.positions[2].z = 4e-4;  // the node at x = 1.9 on the seam
   SideJoin c;
   const StructuredMesh j = join_sides(port, starboard, seam(), &c);
   ASSERT_EQ(c.inserted, 1u);
   EXPECT_EQ(open_seam_edges(j.mesh), 0u);
-  for (const Face& f : j.mesh.faces) {
-    double longest = 0;
-    for (int k = 0; k < corner_count(f); ++k)
-      longest = std::max(longest, squared_norm(j.mesh.positions[f[(k + 1) % corner_count(f)]] -
-                                               j.mesh.positions[f[k]]));
-    EXPECT_GT(face_area(j.mesh.positions, f), 1e-3 * longest);
-  }
+  expect_no_needle(j.mesh);
 }
 
 TEST(JoinSides, ASeamEndBeyondTheOtherSideStaysOpen) {
