@@ -117,15 +117,6 @@ bool fill_cut_corner(const std::vector<Vec3d>& path, Index u, Index w, const Vec
   return true;
 }
 
-// The smallest corner angle of triangle (a, b, c), radians; 0 for one of no area.
-double smallest_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const auto at = [](const Vec3d& p, const Vec3d& q, const Vec3d& r) {
-    const Vec3d e = q - p, f = r - p;
-    return std::atan2(norm(cross(e, f)), dot(e, f));
-  };
-  return std::min({at(a, b, c), at(b, c, a), at(c, a, b)});
-}
-
 // The faces closing a ring (a gap's outline, its faces' way round): the fan from its first
 // node, the row end w, as always, unless that fan has a corner under kSliverAngle. Along a
 // straight run of border a fan from its end lays triangles of next to no area on the run (kcs.iges
@@ -146,7 +137,7 @@ void close_ring(const std::vector<Index>& ring, std::span<const Vec3d> pos,
   const auto quality = [&](std::size_t i, std::size_t k, std::size_t j) {
     const Vec3d &a = pos[ring[i]], &b = pos[ring[k]], &c = pos[ring[j]];
     if (!(dot(cross(b - a, c - a), normal) > 0)) return -1.0;
-    return smallest_angle(a, b, c);
+    return min_angle(a, b, c);
   };
   double fan = M_PI;
   for (std::size_t k = 1; k + 1 < n; ++k) fan = std::min(fan, quality(0, k, k + 1));

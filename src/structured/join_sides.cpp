@@ -89,18 +89,7 @@ std::pair<Index, double> nearest_node(const SurfaceMesh& m, std::span<const Inde
   return {best, d};
 }
 
-// Smallest corner angle of a triangle, radians (0 when degenerate).
-double min_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const Vec3d p[3] = {a, b, c};
-  double worst = std::numbers::pi;
-  for (int i = 0; i < 3; ++i) {
-    const Vec3d u = p[(i + 1) % 3] - p[i], w = p[(i + 2) % 3] - p[i];
-    const double nu = norm(u), nw = norm(w);
-    if (!(nu > 0 && nw > 0)) return 0;
-    worst = std::min(worst, std::acos(std::clamp(dot(u, w) / (nu * nw), -1.0, 1.0)));
-  }
-  return worst;
-}
+using structured::min_angle;
 
 // A quad's smallest corner angle, radians.
 double min_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {

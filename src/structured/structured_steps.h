@@ -159,6 +159,8 @@ ZipCounts zip_chains(std::span<const Index> a, std::span<const double> fa, std::
 // of opposite sides (shorter over longer).
 double quad_warp(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
 double opposite_ratio(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
+// A triangle's smallest corner angle, radians (0 when degenerate).
+double min_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c);
 
 // --- nodes -------------------------------------------------------------------------------
 // Where each vertex came from: its row, curve and arc length (row kInvalid for boundary nodes

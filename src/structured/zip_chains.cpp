@@ -5,6 +5,7 @@
 // diagonal.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "structured/structured_steps.h"
 
@@ -32,6 +33,18 @@ double quad_warp(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d)
   const Vec3d m = (a + b + c + d) * 0.25;
   const double h = std::abs(dot(n, a - m)) / nn;  // the four corners are equally far
   return h / diag;
+}
+
+double min_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Vec3d p[3] = {a, b, c};
+  double worst = std::numbers::pi;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3d u = p[(i + 1) % 3] - p[i], w = p[(i + 2) % 3] - p[i];
+    const double nu = norm(u), nw = norm(w);
+    if (!(nu > 0 && nw > 0)) return 0;
+    worst = std::min(worst, std::acos(std::clamp(dot(u, w) / (nu * nw), -1.0, 1.0)));
+  }
+  return worst;
 }
 
 double opposite_ratio(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
